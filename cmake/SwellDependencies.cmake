@@ -1,0 +1,65 @@
+# Finds every dependency of swell's design card. A missing one stops configure with the Debian
+# package that provides it, so the message is the fix (scripts/install-deps installs them all).
+
+include(FindPackageHandleStandardArgs)
+find_package(PkgConfig)
+if(NOT PkgConfig_FOUND)
+  message(FATAL_ERROR "swell: pkg-config not found. Install it: sudo apt-get install pkg-config")
+endif()
+
+# swell_require(<what> <debian-package> <found-variable>)
+function(swell_require what package found)
+  if(NOT ${found})
+    message(FATAL_ERROR
+      "swell: ${what} not found. Install the Debian package: sudo apt-get install ${package}\n"
+      "(or run scripts/install-deps, which installs everything swell needs)")
+  endif()
+endfunction()
+
+# FFTW: pkg-config is the reliable route on Debian (fftw3 ships no CMake config).
+# fftw3l (long double) is the oracle for sizes where the naive long-double DFT is too slow.
+pkg_check_modules(FFTW3 QUIET IMPORTED_TARGET fftw3)
+pkg_check_modules(FFTW3F QUIET IMPORTED_TARGET fftw3f)
+pkg_check_modules(FFTW3L QUIET IMPORTED_TARGET fftw3l)
+swell_require("FFTW (fftw3)" libfftw3-dev FFTW3_FOUND)
+swell_require("FFTW single precision (fftw3f)" libfftw3-dev FFTW3F_FOUND)
+swell_require("FFTW long double (fftw3l)" libfftw3-dev FFTW3L_FOUND)
+# The threaded FFTW libraries have no .pc file of their own; they sit beside the main ones.
+find_library(FFTW3_THREADS_LIBRARY fftw3_threads HINTS ${FFTW3_LIBRARY_DIRS})
+find_library(FFTW3F_THREADS_LIBRARY fftw3f_threads HINTS ${FFTW3F_LIBRARY_DIRS})
+swell_require("FFTW threads (libfftw3_threads)" libfftw3-dev FFTW3_THREADS_LIBRARY)
+swell_require("FFTW threads (libfftw3f_threads)" libfftw3-dev FFTW3F_THREADS_LIBRARY)
+
+find_package(GTest QUIET)
+swell_require("GoogleTest" "libgtest-dev libgmock-dev" GTest_FOUND)
+
+find_package(benchmark QUIET)
+swell_require("Google Benchmark" libbenchmark-dev benchmark_FOUND)
+
+find_package(Ceres QUIET)
+swell_require("Ceres Solver" libceres-dev Ceres_FOUND)
+
+# find_package(OpenImageIO) fails on Debian 12 (its config names /usr/include/opencv4);
+# pkg-config works.
+pkg_check_modules(OpenImageIO QUIET IMPORTED_TARGET OpenImageIO)
+swell_require("OpenImageIO" libopenimageio-dev OpenImageIO_FOUND)
+
+if(SWELL_WITH_VULKAN)
+  find_package(Vulkan QUIET COMPONENTS glslc)
+  swell_require("Vulkan headers and loader" libvulkan-dev Vulkan_FOUND)
+  swell_require("glslc (GLSL to SPIR-V compiler)" glslc Vulkan_glslc_FOUND)
+endif()
+
+# Libraries swell uses instead of writing their job again.
+find_package(Boost 1.74 QUIET)                       # Boost.Math quadrature, special functions
+swell_require("Boost.Math" libboost-math-dev Boost_FOUND)
+find_package(nlohmann_json 3 QUIET)
+swell_require("nlohmann-json" nlohmann-json3-dev nlohmann_json_FOUND)
+find_package(CLI11 QUIET)
+swell_require("CLI11" libcli11-dev CLI11_FOUND)
+find_package(fmt QUIET)
+swell_require("fmt" libfmt-dev fmt_FOUND)
+pkg_check_modules(TOMLPLUSPLUS QUIET IMPORTED_TARGET tomlplusplus)
+swell_require("toml++" libtomlplusplus-dev TOMLPLUSPLUS_FOUND)
+find_path(RANDOM123_INCLUDE_DIR Random123/philox.h)
+swell_require("Random123" librandom123-dev RANDOM123_INCLUDE_DIR)

@@ -1,0 +1,25 @@
+#pragma once
+// The three tiers of failure (see docs/conventions.md, "Errors"):
+//  - InvalidInput: the caller asked for something swell cannot do (bad value, unknown name).
+//    The message names the field, the rule and the value. The CLI turns it into exit code 2.
+//  - NumericalError: a well-posed computation did not reach its stated accuracy.
+//  - A violated internal invariant is a bug: assert/abort, never an exception.
+#include <stdexcept>
+#include <string>
+
+namespace swell {
+
+class InvalidInput : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+class NumericalError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Throws InvalidInput "<what> must be <rule> (got <value>)" unless ok.
+void require(bool ok, const std::string& what, const std::string& rule, double value);
+
+}  // namespace swell
