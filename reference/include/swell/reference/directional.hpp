@@ -47,13 +47,13 @@ class SpreadSpectrum final : public DirectionalSpectrum {
 
 // Phillips spectrum as Tessendorf (2001) uses it:
 //   Ψ(k) = A e^(−1/(kL)²) / k⁴ · |k̂·ŵ|^p · e^(−k² l²),   L = V²/g,
-// A in m² (Ψ is in m⁴ because 1/k⁴ is), V the wind speed (m/s), ŵ the wind direction, p the
+// A dimensionless (Ψ is in m⁴ because 1/k⁴ is), V the wind speed (m/s), ŵ the wind direction, p the
 // directional exponent (Tessendorf: 2), l the small-wave cutoff length (m). Waves with
 // k̂·ŵ < 0 are multiplied by against_wind_factor (1 keeps them, 0 removes them).
 class Phillips final : public DirectionalSpectrum, public FrequencySpectrum {
  public:
   struct Parameters {
-    double amplitude = 0;          // A, m²
+    double amplitude = 0;          // A, dimensionless
     double wind_speed = 0;         // V, m/s
     double wind_direction = 0;     // θw, radians
     double exponent = 2;           // p

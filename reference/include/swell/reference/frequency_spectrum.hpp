@@ -64,13 +64,15 @@ enum class JonswapNormalization {
 // JONSWAP (Hasselmann et al. 1973):
 //   S(ω) = α g² ω⁻⁵ exp(−(5/4)(ωp/ω)⁴) γ^r,   r = exp(−(ω − ωp)² / (2 σ² ωp²)),
 //   σ = σa for ω ≤ ωp, σb above.
+struct JonswapShape {
+  double gamma = 3.3;     // peak enhancement γ ≥ 1
+  double sigma_a = 0.07;  // peak width below ωp
+  double sigma_b = 0.09;  // peak width above ωp
+};
+
 class Jonswap final : public FrequencySpectrum {
  public:
-  struct Shape {
-    double gamma = 3.3;     // peak enhancement γ ≥ 1
-    double sigma_a = 0.07;  // peak width below ωp
-    double sigma_b = 0.09;  // peak width above ωp
-  };
+  using Shape = JonswapShape;
   static std::shared_ptr<const Jonswap> from_alpha(double alpha, double omega_p, Shape shape = {},
                                                    double gravity = kStandardGravity);
   // Hasselmann 1973: α = 0.076 (U10²/(F g))^0.22, ωp = 22 (g²/(U10 F))^(1/3); fetch F in m.

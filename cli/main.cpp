@@ -1,0 +1,69 @@
+// swell — numerical validation and benchmarking harness for ocean-wave spectra and FFTs.
+// Exit codes: 0 success or pass, 1 a check failed (or a computation missed its accuracy),
+// 2 bad input (the message names what was wrong).
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <fstream>
+#include <iostream>
+
+#include "commands.hpp"
+#include "swell/reference/errors.hpp"
+
+namespace swell::cli {
+
+void write_json(const std::string& destination, const nlohmann::json& document) {
+  if (destination == "-") {
+    std::cout << document.dump(2) << "\n";
+    return;
+  }
+  std::ofstream file(destination);
+  file << document.dump(2) << "\n";
+  if (!file) throw InvalidInput("cannot write JSON to '" + destination + "'");
+}
+
+}  // namespace swell::cli
+
+int main(int argc, char** argv) {
+  CLI::App app{"swell: checks ocean-wave spectra, surfaces and FFTs against physics and each other"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "swell 0.1.0");
+  std::map<std::string, swell::cli::Action> actions;
+  auto* spectrum = app.add_subcommand("spectrum", "evaluate a wave spectrum and its moments");
+  actions["spectrum"] = swell::cli::add_spectrum_command(*spectrum);
+  auto* check = app.add_subcommand("check", "run swell's validations and write a report");
+  actions["check"] = swell::cli::add_check_command(*check);
+
+  // CLI11 says only "A subcommand is required" for a misspelt one; name it instead.
+  if (argc > 1 && argv[1][0] != '-' && !actions.count(argv[1])) {
+    std::cerr << "swell: error: unknown subcommand '" << argv[1]
+              << "'; valid: spectrum, check (run 'swell --help' for usage)\n";
+    return 2;
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "swell: error: " << e.what() << "\n(run 'swell --help' for usage)\n";
+    return 2;
+  }
+
+  try {
+    for (auto* sub : app.get_subcommands()) return actions.at(sub->get_name())();
+  } catch (const swell::InvalidInput& e) {
+    std::cerr << "swell: error: " << e.what() << "\n";
+    return 2;
+  } catch (const swell::NumericalError& e) {
+    std::cerr << "swell: numerical failure: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "swell: error: " << e.what() << "\n";
+    return 2;
+  }
+  return 2;
+}

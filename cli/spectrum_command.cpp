@@ -1,0 +1,177 @@
+// swell spectrum --model M [params] [--omega a:b:n | --omega w1,w2,...] [--json FILE|-]
+// Prints S(ω) at the requested frequencies and the moments of the whole spectrum.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <set>
+
+#include "commands.hpp"
+#include "swell/reference/errors.hpp"
+#include "swell/reference/model_factory.hpp"
+#include "swell/reference/moments.hpp"
+#include "swell/validation/report.hpp"
+
+namespace swell::cli {
+namespace {
+
+using reference::ModelSpec;
+using validation::json_number;
+
+// "a:b:n" → n points from a to b inclusive; "w1,w2,…" → those values. ω in rad/s, ≥ 0.
+std::vector<double> parse_omega(const std::string& text) {
+  auto number = [&](const std::string& token) {
+    std::size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(token, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != token.size() || token.empty() || !std::isfinite(value) || value < 0) {
+      throw InvalidInput("--omega: '" + token + "' is not a finite ω ≥ 0 in rad/s (expected "
+                         "a:b:n or w1,w2,…)");
+    }
+    return value;
+  };
+  std::vector<double> omegas;
+  if (text.find(':') != std::string::npos) {
+    const auto first = text.find(':'), second = text.find(':', first + 1);
+    if (second == std::string::npos || text.find(':', second + 1) != std::string::npos) {
+      throw InvalidInput("--omega: '" + text + "' must be a:b:n (start, stop, count)");
+    }
+    const double a = number(text.substr(0, first));
+    const double b = number(text.substr(first + 1, second - first - 1));
+    const double n = number(text.substr(second + 1));
+    if (n < 1 || n != std::floor(n) || n > 1e7) {
+      throw InvalidInput("--omega: the count n in a:b:n must be a whole number in 1…1e7 (got " +
+                         text.substr(second + 1) + ")");
+    }
+    if (n > 1 && !(b > a)) throw InvalidInput("--omega: a:b:n needs b > a (got " + text + ")");
+    for (int i = 0; i < int(n); ++i) omegas.push_back(n == 1 ? a : a + (b - a) * i / (n - 1));
+  } else {
+    std::size_t start = 0;
+    while (true) {
+      const auto comma = text.find(',', start);
+      omegas.push_back(number(text.substr(start, comma - start)));
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+  }
+  return omegas;
+}
+
+std::string flag_of(const std::string& parameter) {
+  std::string flag = "--" + parameter;
+  for (auto& c : flag) c = c == '_' ? '-' : c;
+  return flag;
+}
+
+nlohmann::json moments_json(const reference::SeaState& s) {
+  const auto& m = s.moments;
+  return {{"m_1", json_number(m.m_minus1)}, {"m0", json_number(m.m0)},
+          {"m1", json_number(m.m1)},        {"m2", json_number(m.m2)},
+          {"m4", json_number(m.m4)},        {"hs", json_number(s.hs)},
+          {"tp", json_number(s.tp)},        {"tm01", json_number(s.tm01)},
+          {"tm02", json_number(s.tm02)},    {"te", json_number(s.te)},
+          {"epsilon4", json_number(s.epsilon4)}, {"nu", json_number(s.nu)},
+          {"omega_p", json_number(s.omega_p)}};
+}
+
+struct SpectrumOptions {
+  std::string model;
+  std::map<std::string, double> numbers;
+  std::map<std::string, std::string> choices;
+  std::map<std::string, CLI::Option*> number_options, choice_options;
+  std::string omega;
+  std::string json;
+};
+
+int run_spectrum(const SpectrumOptions& o) {
+  ModelSpec spec{o.model, {}, {}};
+  for (const auto& [name, option] : o.number_options) {
+    if (option->count()) spec.numbers[name] = o.numbers.at(name);
+  }
+  for (const auto& [name, option] : o.choice_options) {
+    if (option->count()) spec.choices[name] = o.choices.at(name);
+  }
+  const auto spectrum = reference::make_frequency_spectrum(spec);
+  const double omega_p = spectrum->peak_omega();
+  // Without --omega: 16 points from ωp/4 to 4ωp.
+  const auto omegas = o.omega.empty()
+                          ? parse_omega(fmt::format("{:.17g}:{:.17g}:16", 0.25 * omega_p, 4 * omega_p))
+                          : parse_omega(o.omega);
+  std::vector<double> values;
+  for (double w : omegas) values.push_back((*spectrum)(w));
+  const auto state = reference::sea_state(*spectrum);
+
+  if (!o.json.empty()) {
+    nlohmann::json params = nlohmann::json::object();
+    for (const auto& p : spectrum->parameters()) params[p.name] = json_number(p.value);
+    nlohmann::json document = {{"model", spectrum->name()},
+                               {"params", params},
+                               {"omega", omegas},
+                               {"S", values},
+                               {"moments", moments_json(state)},
+                               {"units", {{"omega", "rad/s"}, {"S", "m^2 s/rad"},
+                                          {"m_n", "m^2 (rad/s)^n"}, {"periods", "s"}}}};
+    write_json(o.json, document);
+    if (o.json == "-") return 0;
+  }
+
+  std::string params;
+  for (const auto& p : spectrum->parameters()) {
+    params += fmt::format("{}{} = {:.6g}{}", params.empty() ? "" : ", ", p.name, p.value,
+                          p.unit.empty() ? "" : " " + p.unit);
+  }
+  fmt::print("model: {}\nparameters: {}\n\n{:>14}  {:>16}\n", spectrum->name(), params,
+             "omega [rad/s]", "S [m²·s/rad]");
+  for (std::size_t i = 0; i < omegas.size(); ++i) {
+    fmt::print("{:>14.6g}  {:>16.9g}\n", omegas[i], values[i]);
+  }
+  const auto& m = state.moments;
+  fmt::print("\nmoments of the whole spectrum (angular frequency):\n"
+             "  m_1 = {:.9g} m²·s/rad   m0 = {:.9g} m²   m1 = {:.9g} m²·rad/s\n"
+             "  m2 = {:.9g} m²·(rad/s)²   m4 = {:.9g} m²·(rad/s)⁴{}\n"
+             "  Hs = {:.6g} m   Tp = {:.6g} s   Tm01 = {:.6g} s   Tm02 = {:.6g} s   Te = {:.6g} s\n"
+             "  ε4 = {:.6g}   ν = {:.6g}\n",
+             m.m_minus1, m.m0, m.m1, m.m2, m.m4,
+             std::isinf(m.m4) ? " (diverges: S ~ ω⁻⁵ tail)" : "", state.hs, state.tp, state.tm01,
+             state.tm02, state.te, state.epsilon4, state.nu);
+  return 0;
+}
+
+}  // namespace
+
+Action add_spectrum_command(CLI::App& app) {
+  auto o = std::make_shared<SpectrumOptions>();
+  const auto models = reference::frequency_model_names();
+  app.add_option("--model", o->model, "spectrum model")
+      ->required()
+      ->check(CLI::IsMember(std::set<std::string>(models.begin(), models.end())));
+  // One flag per parameter any model takes; each model rejects the ones it does not take.
+  std::set<std::string> seen;
+  for (const auto& model : models) {
+    for (const auto& info : reference::model_parameters(model)) {
+      if (!seen.insert(info.name).second) continue;
+      const bool is_choice = info.unit.find('|') != std::string::npos;
+      const auto help = info.meaning + (info.unit.empty() ? "" : " [" + info.unit + "]");
+      if (is_choice) {
+        o->choice_options[info.name] =
+            app.add_option(flag_of(info.name), o->choices[info.name], help);
+      } else {
+        o->number_options[info.name] =
+            app.add_option(flag_of(info.name), o->numbers[info.name], help);
+      }
+    }
+  }
+  app.add_option("--omega", o->omega, "frequencies in rad/s: a:b:n or w1,w2,… (default ωp/4:4ωp:16)");
+  app.add_option("--json", o->json, "write JSON to FILE, or - for standard output");
+  app.footer("A parameter a model does not take is an error. JSON: {model, params, omega, S, "
+             "moments: {m0, m1, m2, m4, m_1, hs, tp, tm01, tm02, te, …}}; m4 of an ω⁻⁵ tail "
+             "diverges and is null.");
+  return [o] { return run_spectrum(*o); };
+}
+
+}  // namespace swell::cli

@@ -1,0 +1,247 @@
+#include "swell/reference/model_factory.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <set>
+
+#include "swell/reference/errors.hpp"
+
+namespace swell::reference {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+const std::vector<ParameterInfo> kCommon = {
+    {"gravity", "m/s²", "gravitational acceleration (default 9.81)"},
+    {"depth", "m", "water depth for the dispersion relation (default inf: deep water)"},
+    {"wind_dir", "deg", "direction the waves travel toward, counter-clockwise from +x (default 0)"},
+};
+const std::vector<ParameterInfo> kJonswap = {
+    {"hs", "m", "significant wave height (with tp or omega_p)"},
+    {"tp", "s", "peak period"},
+    {"omega_p", "rad/s", "peak angular frequency (alternative to tp)"},
+    {"alpha", "", "Phillips constant α (with tp or omega_p)"},
+    {"u10", "m/s", "wind speed at 10 m (with fetch)"},
+    {"fetch", "m", "fetch (with u10)"},
+    {"gamma", "", "peak enhancement γ ≥ 1 (default 3.3)"},
+    {"sigma_a", "", "peak width below ωp (default 0.07)"},
+    {"sigma_b", "", "peak width above ωp (default 0.09)"},
+    {"normalization", "exact|dnv", "with hs: exact (default) or DNV's 1 − 0.287 ln γ"},
+};
+
+std::vector<ParameterInfo> with_common(std::vector<ParameterInfo> own) {
+  own.insert(own.end(), kCommon.begin(), kCommon.end());
+  return own;
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
+}
+
+std::string parameter_names(const std::vector<ParameterInfo>& infos) {
+  std::vector<std::string> names;
+  for (const auto& info : infos) names.push_back(info.name);
+  return join(names);
+}
+
+class Reader {
+ public:
+  Reader(const ModelSpec& spec, std::string what, const std::vector<ParameterInfo>& allowed)
+      : spec_(spec), what_(std::move(what)) {
+    std::set<std::string> known;
+    for (const auto& info : allowed) known.insert(info.name);
+    auto check = [&](const std::string& name) {
+      if (!known.count(name)) {
+        throw InvalidInput(what_ + " '" + spec_.model + "' does not take parameter '" + name +
+                           "'; valid: " + parameter_names(allowed));
+      }
+    };
+    for (const auto& [name, value] : spec.numbers) check(name);
+    for (const auto& [name, value] : spec.choices) check(name);
+    for (const auto& [name, value] : spec.numbers) {
+      require(!std::isnan(value), what_ + " parameter " + name, "a number", value);
+    }
+  }
+  std::optional<double> number(const std::string& name) const {
+    auto it = spec_.numbers.find(name);
+    return it == spec_.numbers.end() ? std::nullopt : std::optional<double>(it->second);
+  }
+  double number_or(const std::string& name, double fallback) const {
+    return number(name).value_or(fallback);
+  }
+  double required(const std::string& name, const std::string& meaning) const {
+    auto value = number(name);
+    if (!value) throw InvalidInput(spec_.model + " needs " + name + " (" + meaning + ")");
+    return *value;
+  }
+  std::string choice(const std::string& name, const std::vector<std::string>& valid) const {
+    auto it = spec_.choices.find(name);
+    if (it == spec_.choices.end()) return valid.front();
+    if (std::find(valid.begin(), valid.end(), it->second) == valid.end()) {
+      throw InvalidInput(spec_.model + ": " + name + " '" + it->second + "' is not one of: " +
+                         join(valid));
+    }
+    return it->second;
+  }
+  const std::string& model() const { return spec_.model; }
+
+ private:
+  const ModelSpec& spec_;
+  std::string what_;
+};
+
+// tp or omega_p, not both; the peak angular frequency.
+std::optional<double> peak_omega_of(const Reader& r) {
+  auto tp = r.number("tp"), omega_p = r.number("omega_p");
+  if (tp && omega_p) throw InvalidInput(r.model() + ": give tp or omega_p, not both");
+  if (tp) {
+    require(*tp > 0 && std::isfinite(*tp), "tp (peak period)", "finite and > 0 s", *tp);
+    return 2.0 * std::numbers::pi / *tp;
+  }
+  return omega_p;
+}
+
+std::shared_ptr<const Jonswap> make_jonswap(const Reader& r) {
+  const double g = r.number_or("gravity", kStandardGravity);
+  const Jonswap::Shape shape{r.number_or("gamma", 3.3), r.number_or("sigma_a", 0.07),
+                             r.number_or("sigma_b", 0.09)};
+  const auto hs = r.number("hs"), alpha = r.number("alpha"), u10 = r.number("u10"),
+             fetch = r.number("fetch");
+  const auto omega_p = peak_omega_of(r);
+  const int forms = (hs ? 1 : 0) + (alpha ? 1 : 0) + ((u10 || fetch) ? 1 : 0);
+  const std::string usage =
+      "; give exactly one of: hs with tp (or omega_p); alpha with tp (or omega_p); u10 with fetch";
+  if (forms != 1) throw InvalidInput(r.model() + ": ambiguous or missing parameters" + usage);
+  if (u10 || fetch) {
+    if (!u10 || !fetch || omega_p) {
+      throw InvalidInput(r.model() + ": the wind form takes u10 and fetch and no peak" + usage);
+    }
+    return Jonswap::from_wind_fetch(*u10, *fetch, shape, g);
+  }
+  if (!omega_p) throw InvalidInput(r.model() + " needs tp or omega_p" + usage);
+  if (alpha) return Jonswap::from_alpha(*alpha, *omega_p, shape, g);
+  const auto normalization = r.choice("normalization", {"exact", "dnv"}) == "dnv"
+                                 ? JonswapNormalization::dnv
+                                 : JonswapNormalization::exact;
+  require(std::isfinite(*omega_p) && *omega_p > 0, "omega_p", "finite and > 0 rad/s", *omega_p);
+  return Jonswap::from_hs_tp(*hs, 2.0 * std::numbers::pi / *omega_p, shape, normalization, g);
+}
+
+}  // namespace
+
+std::vector<std::string> frequency_model_names() {
+  return {"phillips", "pierson-moskowitz", "bretschneider", "jonswap", "tma"};
+}
+
+std::vector<std::string> spreading_model_names() {
+  return {"cos2s", "mitsuyasu", "hasselmann", "donelan-banner", "cos-power"};
+}
+
+std::vector<ParameterInfo> model_parameters(const std::string& model) {
+  if (model == "pierson-moskowitz") {
+    return with_common({{"u19_5", "m/s", "wind speed at 19.5 m (wind form)"},
+                        {"hs", "m", "significant wave height (Bretschneider form, with tp)"},
+                        {"tp", "s", "peak period"}});
+  }
+  if (model == "bretschneider") {
+    return with_common({{"hs", "m", "significant wave height"}, {"tp", "s", "peak period"}});
+  }
+  if (model == "jonswap") return with_common(kJonswap);
+  if (model == "tma") {
+    auto infos = with_common(kJonswap);
+    infos.push_back({"depth_factor", "exact|thompson-vincent",
+                     "Kitaigorodskii factor: exact (default) or Thompson–Vincent"});
+    return infos;
+  }
+  if (model == "phillips") {
+    return with_common({{"amplitude", "", "Phillips constant A (dimensionless: Ψ in m⁴ is A/k⁴)"},
+                        {"wind_speed", "m/s", "wind speed V (L = V²/g)"},
+                        {"exponent", "", "directional exponent p of |k̂·ŵ|^p (default 2)"},
+                        {"small_wave_cutoff", "m", "l in e^(−k²l²) (default 0)"},
+                        {"against_wind_factor", "", "scale of waves against the wind, 0…1 (default 1)"}});
+  }
+  if (model == "cos2s") return {{"s", "", "spreading exponent"}};
+  if (model == "mitsuyasu") return {{"s_max", "", "spreading exponent at the peak"}};
+  if (model == "hasselmann") return {{"wave_age", "", "U10/cp at the peak (default 1.17)"}};
+  if (model == "donelan-banner") return {};
+  if (model == "cos-power") {
+    return {{"p", "", "exponent of |cos θ|"},
+            {"one_sided", "yes|no", "no energy against the mean direction (default no)"}};
+  }
+  throw InvalidInput("unknown model '" + model + "'; valid spectra: " +
+                     join(frequency_model_names()) + "; valid spreading: " +
+                     join(spreading_model_names()));
+}
+
+Dispersion make_dispersion(const ModelSpec& spec) {
+  auto number = [&](const std::string& name, double fallback) {
+    auto it = spec.numbers.find(name);
+    return it == spec.numbers.end() ? fallback : it->second;
+  };
+  return Dispersion::finite_depth(number("depth", kInfiniteDepth),
+                                  number("gravity", kStandardGravity));
+}
+
+FrequencySpectrumPtr make_frequency_spectrum(const ModelSpec& spec) {
+  const auto& names = frequency_model_names();
+  if (std::find(names.begin(), names.end(), spec.model) == names.end()) {
+    throw InvalidInput("unknown spectrum model '" + spec.model + "'; valid: " + join(names));
+  }
+  const Reader r(spec, "spectrum model", model_parameters(spec.model));
+  const Dispersion dispersion = make_dispersion(spec);  // validates depth and gravity
+  const double g = dispersion.gravity();
+
+  if (spec.model == "bretschneider") {
+    return PiersonMoskowitz::bretschneider(r.required("hs", "m"), r.required("tp", "s"));
+  }
+  if (spec.model == "pierson-moskowitz") {
+    const auto u = r.number("u19_5");
+    if (u && (r.number("hs") || r.number("tp"))) {
+      throw InvalidInput("pierson-moskowitz: give u19_5 (wind form) or hs and tp, not both");
+    }
+    if (u) return PiersonMoskowitz::from_wind(*u, g);
+    if (!r.number("hs") && !r.number("tp")) {
+      throw InvalidInput("pierson-moskowitz needs u19_5 (wind form) or hs and tp");
+    }
+    return PiersonMoskowitz::bretschneider(r.required("hs", "m"), r.required("tp", "s"));
+  }
+  if (spec.model == "jonswap") return make_jonswap(r);
+  if (spec.model == "tma") {
+    const double depth = r.required("depth", "water depth in m");
+    const auto factor = r.choice("depth_factor", {"exact", "thompson-vincent"}) == "exact"
+                            ? TmaFactor::exact
+                            : TmaFactor::thompson_vincent;
+    return Tma::create(make_jonswap(r), depth, factor);
+  }
+  // phillips
+  Phillips::Parameters p;
+  p.amplitude = r.required("amplitude", "Phillips constant A, dimensionless");
+  p.wind_speed = r.required("wind_speed", "wind speed V in m/s");
+  p.wind_direction = r.number_or("wind_dir", 0) * kDegree;
+  p.exponent = r.number_or("exponent", 2);
+  p.small_wave_cutoff = r.number_or("small_wave_cutoff", 0);
+  p.against_wind_factor = r.number_or("against_wind_factor", 1);
+  return Phillips::create(p, dispersion);
+}
+
+SpreadingPtr make_spreading(const ModelSpec& spec, double omega_p) {
+  const auto& names = spreading_model_names();
+  if (std::find(names.begin(), names.end(), spec.model) == names.end()) {
+    throw InvalidInput("unknown spreading model '" + spec.model + "'; valid: " + join(names));
+  }
+  const Reader r(spec, "spreading model", model_parameters(spec.model));
+  if (spec.model == "cos2s") return Cos2s::constant(r.required("s", "spreading exponent"));
+  if (spec.model == "mitsuyasu") {
+    return Cos2s::mitsuyasu(r.required("s_max", "spreading exponent at the peak"), omega_p);
+  }
+  if (spec.model == "hasselmann") return Cos2s::hasselmann(omega_p, r.number_or("wave_age", 1.17));
+  if (spec.model == "donelan-banner") return DonelanBanner::create(omega_p);
+  return CosPower::create(r.required("p", "exponent of |cos θ|"),
+                          r.choice("one_sided", {"no", "yes"}) == "yes");
+}
+
+}  // namespace swell::reference

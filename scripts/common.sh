@@ -1,0 +1,45 @@
+# Shared by scripts/run and scripts/test: install what is missing, then configure and build.
+# Sourced, not run. Set SWELL_BUILD_DIR to build elsewhere (default: build/ in the checkout).
+set -euo pipefail
+
+SWELL_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+SWELL_BUILD_DIR="${SWELL_BUILD_DIR:-$SWELL_ROOT/build}"
+
+# Every Debian 12 package swell builds, tests or runs with. The dependency check in
+# cmake/SwellDependencies.cmake names the same packages when one is missing.
+SWELL_PACKAGES=(
+  build-essential cmake pkg-config
+  libfftw3-dev libgtest-dev libgmock-dev libbenchmark-dev libceres-dev libopenimageio-dev
+  libvulkan-dev mesa-vulkan-drivers glslc vulkan-tools
+  libboost-math-dev nlohmann-json3-dev libcli11-dev libfmt-dev libtomlplusplus-dev
+  librandom123-dev
+)
+
+swell_install_packages() {
+  local missing=()
+  for package in "${SWELL_PACKAGES[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+      missing+=("$package")
+    fi
+  done
+  if [ ${#missing[@]} -eq 0 ]; then
+    return 0
+  fi
+  echo "swell: installing missing Debian packages: ${missing[*]}"
+  local sudo=()
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "swell: need root or sudo to install: ${missing[*]}" >&2; exit 2; }
+    sudo=(sudo)
+  fi
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}"
+}
+
+swell_build() {
+  # Configure once; later calls rebuild only what changed.
+  if [ ! -f "$SWELL_BUILD_DIR/CMakeCache.txt" ]; then
+    cmake -S "$SWELL_ROOT" -B "$SWELL_BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
+  fi
+  cmake --build "$SWELL_BUILD_DIR" -j "$(nproc)"
+}

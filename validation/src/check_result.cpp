@@ -1,0 +1,54 @@
+#include "swell/validation/check_result.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+namespace swell::validation {
+namespace {
+CheckResult make(std::string check, std::string subject, double measured, double expected,
+                 double tolerance, std::string criterion, bool passed, std::string what) {
+  const std::string reason =
+      fmt::format("{} {}", what, passed ? "within bound" : "OUT OF BOUND");
+  return {std::move(check), std::move(subject), measured, expected, tolerance,
+          std::move(criterion), passed, reason};
+}
+}  // namespace
+
+CheckResult relative_check(std::string check, std::string subject, double measured,
+                           double expected, double tolerance, std::string what) {
+  const double error = std::abs(measured - expected) / std::abs(expected);
+  const bool passed = error <= tolerance;  // false for NaN
+  return make(std::move(check), std::move(subject), measured, expected, tolerance,
+              fmt::format("|rel err| ≤ {:.0e}", tolerance), passed,
+              fmt::format("{}: rel err {:.2e}", what, error));
+}
+
+CheckResult absolute_check(std::string check, std::string subject, double measured,
+                           double expected, double tolerance, std::string what) {
+  const double error = std::abs(measured - expected);
+  return make(std::move(check), std::move(subject), measured, expected, tolerance,
+              fmt::format("|err| ≤ {:.0e}", tolerance), error <= tolerance,
+              fmt::format("{}: err {:.2e}", what, error));
+}
+
+CheckResult error_bound_check(std::string check, std::string subject, double error, double bound,
+                              std::string what) {
+  return make(std::move(check), std::move(subject), error, 0.0, bound,
+              fmt::format("err ≤ {:.0e}", bound), error <= bound, std::move(what));
+}
+
+CheckResult range_check(std::string check, std::string subject, double measured, double lower,
+                        double upper, std::string what) {
+  return make(std::move(check), std::move(subject), measured, 0.5 * (lower + upper),
+              0.5 * (upper - lower), fmt::format("{} ≤ x ≤ {}", lower, upper),
+              measured >= lower && measured <= upper, std::move(what));
+}
+
+bool all_passed(const std::vector<CheckResult>& results) {
+  for (const auto& r : results) {
+    if (!r.passed) return false;
+  }
+  return true;
+}
+
+}  // namespace swell::validation

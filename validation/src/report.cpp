@@ -1,0 +1,111 @@
+#include "swell/validation/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+
+namespace swell::validation {
+namespace {
+
+std::string number(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  return fmt::format("{:.10g}", x);
+}
+
+// Display width of a UTF-8 string (code points, which is right for the symbols used here).
+std::size_t width(const std::string& s) {
+  return std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; });
+}
+
+std::string pad(const std::string& s, std::size_t w) {
+  return s + std::string(w > width(s) ? w - width(s) : 0, ' ');
+}
+
+std::vector<std::vector<std::string>> rows_of(const std::vector<CheckResult>& results) {
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& r : results) {
+    rows.push_back({r.check, r.subject, number(r.measured), number(r.expected), r.criterion,
+                    r.passed ? "pass" : "FAIL"});
+  }
+  return rows;
+}
+
+const std::vector<std::string> kHeader = {"check", "subject", "measured", "expected", "tolerance",
+                                          "verdict"};
+
+}  // namespace
+
+nlohmann::json json_number(double x) {
+  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
+}
+
+std::string render_table(const std::vector<CheckResult>& results) {
+  const auto rows = rows_of(results);
+  std::vector<std::size_t> widths(kHeader.size());
+  for (std::size_t c = 0; c < kHeader.size(); ++c) {
+    widths[c] = width(kHeader[c]);
+    for (const auto& row : rows) widths[c] = std::max(widths[c], width(row[c]));
+  }
+  std::string out;
+  auto line = [&](const std::vector<std::string>& cells) {
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      out += c + 1 < cells.size() ? pad(cells[c], widths[c]) + "  " : cells[c];
+    }
+    out += '\n';
+  };
+  line(kHeader);
+  for (const auto& row : rows) line(row);
+  const auto failed = std::count_if(results.begin(), results.end(),
+                                    [](const CheckResult& r) { return !r.passed; });
+  out += fmt::format("{} passed, {} failed\n", results.size() - failed, failed);
+  return out;
+}
+
+std::string render_markdown(const std::vector<CheckResult>& results, const std::string& title) {
+  std::string out = "# " + title + "\n\n| check | subject | measured | expected | tolerance | "
+                    "verdict | reason |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& r : results) {
+    out += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", r.check, r.subject,
+                       number(r.measured), number(r.expected), r.criterion,
+                       r.passed ? "pass" : "**FAIL**", r.reason);
+  }
+  const auto failed = std::count_if(results.begin(), results.end(),
+                                    [](const CheckResult& r) { return !r.passed; });
+  out += fmt::format("\n{} passed, {} failed\n", results.size() - failed, failed);
+  return out;
+}
+
+nlohmann::json to_json(const std::vector<CheckResult>& results) {
+  auto checks = nlohmann::json::array();
+  int passed = 0;
+  for (const auto& r : results) {
+    passed += r.passed;
+    checks.push_back({{"check", r.check},
+                      {"subject", r.subject},
+                      {"measured", json_number(r.measured)},
+                      {"expected", json_number(r.expected)},
+                      {"tolerance", json_number(r.tolerance)},
+                      {"criterion", r.criterion},
+                      {"pass", r.passed},
+                      {"reason", r.reason}});
+  }
+  return {{"checks", checks},
+          {"passed", passed},
+          {"failed", static_cast<int>(results.size()) - passed}};
+}
+
+void write_report(const std::filesystem::path& dir, const std::string& stem,
+                  const std::vector<CheckResult>& results, const std::string& title) {
+  std::filesystem::create_directories(dir);
+  auto write = [&](const std::filesystem::path& path, const std::string& text) {
+    std::ofstream file(path);
+    file << text;
+    if (!file) throw std::runtime_error("cannot write " + path.string());
+  };
+  write(dir / (stem + ".json"), to_json(results).dump(2) + "\n");
+  write(dir / (stem + ".md"), render_markdown(results, title));
+}
+
+}  // namespace swell::validation
