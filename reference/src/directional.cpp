@@ -76,6 +76,8 @@ double Phillips::radial(double k) const {
   // e^(−1/(kL)²) is below e^(−1000) (zero in double) for kL < 0.0316, where 1/k⁴ may overflow.
   if (kl < 0.0316) return 0;
   const double k2 = k * k;
+  // Beyond k ≈ 1e77, k⁴ overflows and Ψ is 0 in double (avoiding ∞·0 in the cutoff term).
+  if (std::isinf(k2 * k2)) return 0;
   const double l = parameters_.small_wave_cutoff;
   return parameters_.amplitude * std::exp(-1.0 / (kl * kl) - k2 * l * l) / (k2 * k2);
 }
@@ -98,7 +100,8 @@ double Phillips::operator()(double omega) const {
   if (omega <= 0) return 0;
   const double k = dispersion_.wavenumber(omega);
   // S(ω) dω = (∫ Ψ dθ) k dk  ⇒  S = (∫ Ψ dθ) k / (dω/dk).
-  return directional_integral_of_psi(k) * k / dispersion_.group_velocity(k);
+  const double directional = directional_integral_of_psi(k);
+  return directional == 0 ? 0.0 : directional * k / dispersion_.group_velocity(k);
 }
 
 double Phillips::tail_exponent() const {

@@ -61,6 +61,9 @@ double Dispersion::wavenumber(double omega) const {
           omega);
   if (omega == 0) return 0;
   const double target = omega * omega;
+  // ω > ~1e154: ω² overflows and so does k, which grows at least as ω²/g... or as ω^(2/3) with
+  // surface tension, where (gk + τk³/ρ) alone overflows first. Either way k is ∞ in double.
+  if (std::isinf(target)) return std::numeric_limits<double>::infinity();
   auto residual = [&](double k) { return omega_squared(k) - target; };
 
   // Initial guess: Eckart (1952), k ≈ k∞ / √tanh(k∞ h) with k∞ = ω²/g, within ~5 % for gravity

@@ -159,6 +159,9 @@ double kitaigorodskii_exact(double omega, double depth, double gravity) {
   const auto dispersion = Dispersion::finite_depth(depth, gravity);
   if (dispersion.is_deep()) return 1.0;
   if (omega == 0) return 0.0;
+  // k ≥ ω²/g (the deep-water k), so beyond ω²h/g = 40: tanh²(kh) = 1 and 2kh/sinh 2kh < 1e-32,
+  // Φ = 1 in double. Returning it here also keeps ω → ∞ (where k overflows) finite.
+  if (omega * omega * depth / gravity > 40) return 1.0;
   const double kh = dispersion.wavenumber(omega) * depth;
   const double t = std::tanh(kh);
   // sinh overflows to ∞ for kh > 355, where 2kh/sinh(2kh) is 0 to double precision anyway.

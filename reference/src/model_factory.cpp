@@ -87,6 +87,7 @@ class Reader {
     }
     return it->second;
   }
+  bool has_choice(const std::string& name) const { return spec_.choices.count(name) > 0; }
   const std::string& model() const { return spec_.model; }
 
  private:
@@ -116,6 +117,9 @@ std::shared_ptr<const Jonswap> make_jonswap(const Reader& r) {
   const std::string usage =
       "; give exactly one of: hs with tp (or omega_p); alpha with tp (or omega_p); u10 with fetch";
   if (forms != 1) throw InvalidInput(r.model() + ": ambiguous or missing parameters" + usage);
+  if (!hs && r.has_choice("normalization")) {
+    throw InvalidInput(r.model() + ": normalization applies only to the hs form (hs with tp)");
+  }
   if (u10 || fetch) {
     if (!u10 || !fetch || omega_p) {
       throw InvalidInput(r.model() + ": the wind form takes u10 and fetch and no peak" + usage);

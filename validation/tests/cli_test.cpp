@@ -11,6 +11,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <ostream>
 #include <string>
 
 namespace {
@@ -84,6 +85,8 @@ struct BadInput {
   std::string arguments;
   std::string must_mention;
 };
+
+void PrintTo(const BadInput& input, std::ostream* os) { *os << "swell " << input.arguments; }
 
 class CliBadInput : public testing::TestWithParam<BadInput> {};
 
