@@ -1,5 +1,5 @@
 # Finds every dependency of swell's design card. A missing one stops configure with the Debian
-# package that provides it, so the message is the fix (scripts/install-deps installs them all).
+# package that provides it, so the message is the fix (scripts/run and scripts/test install them all).
 
 include(FindPackageHandleStandardArgs)
 find_package(PkgConfig)
@@ -12,7 +12,7 @@ function(swell_require what package found)
   if(NOT ${found})
     message(FATAL_ERROR
       "swell: ${what} not found. Install the Debian package: sudo apt-get install ${package}\n"
-      "(or run scripts/install-deps, which installs everything swell needs)")
+      "(scripts/run and scripts/test install everything swell needs)")
   endif()
 endfunction()
 

@@ -9,17 +9,20 @@
 #include <numbers>
 #include <vector>
 
+#include "test_support.hpp"
 #include "swell/reference/dispersion.hpp"
 #include "swell/reference/errors.hpp"
 
 namespace {
 
+using swell::test::kG;
+using swell::test::kInf;
+using swell::test::kNaN;
+using swell::test::rel;
+
 namespace sr = swell::reference;
 using std::numbers::pi;
 
-constexpr double kG = 9.81;
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kTau = sr::kSeaWaterTensionOverDensity;
 
 // ω(k) written out from the definition, independently of the library.
@@ -42,11 +45,6 @@ std::vector<double> log_space(double lo, double hi, int n) {
   std::vector<double> v;
   for (int i = 0; i < n; ++i) v.push_back(lo * std::pow(hi / lo, double(i) / (n - 1)));
   return v;
-}
-
-// Relative difference; two exact zeros (an underflowed tail) agree.
-double rel(double got, double want) {
-  return got == want ? 0.0 : std::abs(got - want) / std::abs(want);
 }
 
 const std::vector<double> kDepths = {0.5, 1.0, 10.0, 50.0, 1000.0, kInf};

@@ -13,18 +13,16 @@
 #include <utility>
 #include <vector>
 
+#include "test_support.hpp"
 #include "swell/reference/dispersion.hpp"
 #include "swell/reference/moments.hpp"
 
 namespace {
 
+using swell::test::rel;
+
 namespace sr = swell::reference;
 using nlohmann::json;
-
-// Relative difference; two exact zeros (an underflowed tail) agree.
-double rel(double got, double want) {
-  return got == want ? 0.0 : std::abs(got - want) / std::abs(want);
-}
 
 json load(const std::string& name) {
   const std::string path = std::string(SWELL_TEST_DATA_DIR) + "/external/mhkit/" + name;

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "test_support.hpp"
 #include "swell/reference/directional.hpp"
 #include "swell/reference/dispersion.hpp"
 #include "swell/reference/errors.hpp"
@@ -27,17 +28,13 @@
 
 namespace {
 
+using swell::test::kG;
+using swell::test::kInf;
+using swell::test::kNaN;
+using swell::test::rel;
+
 namespace sr = swell::reference;
 using std::numbers::pi;
-
-constexpr double kG = 9.81;
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Relative difference; two exact zeros (an underflowed tail) agree.
-double rel(double got, double want) {
-  return got == want ? 0.0 : std::abs(got - want) / std::abs(want);
-}
 
 // ∫_a^b f: tanh-sinh for finite b, exp-sinh for b = ∞. exp-sinh samples out to ~1e300; beyond
 // 1e8 a the tails integrated here (ω⁻⁵ in ω up to m2, k⁻³ in k) hold < 1e-16 of the integral,

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "test_support.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/frequency_spectrum.hpp"
 #include "swell/reference/model_factory.hpp"
@@ -21,17 +22,13 @@
 
 namespace {
 
+using swell::test::kG;
+using swell::test::kInf;
+using swell::test::kNaN;
+using swell::test::rel;
+
 namespace sr = swell::reference;
 using std::numbers::pi;
-
-constexpr double kG = 9.81;
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Relative difference; two exact zeros (an underflowed tail) agree.
-double rel(double got, double want) {
-  return got == want ? 0.0 : std::abs(got - want) / std::abs(want);
-}
 
 // ∫_a^b f by tanh-sinh (b finite) or exp-sinh (b = ∞), requested to 1e-13. exp-sinh samples
 // out to ω ~ 1e300; beyond 1e8 a the ω⁻⁵ tails here hold < (1e-8)² of any moment up to m2,

@@ -12,20 +12,17 @@
 #include <string>
 #include <vector>
 
+#include "test_support.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/spreading.hpp"
 
 namespace {
 
+using swell::test::kNaN;
+using swell::test::rel;
+
 namespace sr = swell::reference;
 using std::numbers::pi;
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Relative difference; two exact zeros (an underflowed tail) agree.
-double rel(double got, double want) {
-  return got == want ? 0.0 : std::abs(got - want) / std::abs(want);
-}
 
 // ∫ f dθ over (−π, π], split at −π/2, 0, π/2 (the peak of every model and the kinks of the
 // one-sided and non-integer |cos θ|^p laws), each piece by tanh-sinh requested to 1e-14.
