@@ -1,14 +1,17 @@
-// swell check [reference | all] [--json FILE|-] [--report-dir DIR]
-// Runs swell's validations, prints a table and writes <report-dir>/check_<what>.{json,md}.
+// swell check [reference | transforms | all] [--impl NAME|all] [--json FILE|-] [--report-dir DIR]
+// Runs swell's validations, prints tables and writes <report-dir>/check_<what>.{json,md}.
 #include <fmt/format.h>
 
+#include <fstream>
 #include <iostream>
 #include <memory>
 
 #include "commands.hpp"
+#include "swell/impls/transform.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/validation/reference_checks.hpp"
 #include "swell/validation/report.hpp"
+#include "swell/validation/transform_checks.hpp"
 
 namespace swell::cli {
 namespace {
@@ -22,36 +25,65 @@ struct CheckOptions {
 };
 
 int run_check(const CheckOptions& o) {
-  const std::filesystem::path data =
-      o.data_dir.empty() ? validation::default_data_directory() : std::filesystem::path(o.data_dir);
-  if (!std::filesystem::exists(data / "external")) {
-    throw InvalidInput("data directory '" + data.string() +
-                       "' has no external/ reference data (set --data-dir or SWELL_DATA_DIR)");
+  const bool all = o.what == "all";
+  std::vector<std::string> impls =
+      o.impl == "all" ? impls::backend_names() : std::vector<std::string>{o.impl};
+  for (const auto& name : impls) impls::make_backend(name);  // unknown names: exit 2 up front
+
+  std::vector<validation::CheckResult> checks;
+  if (o.what == "reference" || all) {
+    const std::filesystem::path data =
+        o.data_dir.empty() ? validation::default_data_directory() : std::filesystem::path(o.data_dir);
+    if (!std::filesystem::exists(data / "external")) {
+      throw InvalidInput("data directory '" + data.string() +
+                         "' has no external/ reference data (set --data-dir or SWELL_DATA_DIR)");
+    }
+    checks = validation::run_reference_checks(data);
   }
-  std::vector<validation::CheckResult> results;
-  // "all" grows as later parts land: transforms, ocean.
-  if (o.what == "reference" || o.what == "all") {
-    const auto reference = validation::run_reference_checks(data);
-    results.insert(results.end(), reference.begin(), reference.end());
+  std::vector<validation::TransformAccuracy> transforms;
+  if (o.what == "transforms" || all) {
+    for (const auto& name : impls) {
+      std::cerr << "checking transforms of " << name << "…\n";
+      const auto rows = validation::run_transform_checks(name);
+      transforms.insert(transforms.end(), rows.begin(), rows.end());
+    }
   }
+
+  nlohmann::json document = validation::to_json(checks);
+  document["transforms"] = validation::transforms_to_json(transforms)["transforms"];
+  const bool passed = validation::all_passed(checks) &&
+                      std::all_of(transforms.begin(), transforms.end(),
+                                  [](const auto& t) { return t.pass; });
+  document["pass"] = passed;
+
   const std::string title = "swell check " + o.what;
-  validation::write_report(o.report_dir, "check_" + o.what, results, title);
-  if (!o.json.empty()) write_json(o.json, validation::to_json(results));
-  if (o.json != "-") {
-    std::cout << validation::render_table(results)
-              << fmt::format("report: {}/check_{}.{{json,md}}\n", o.report_dir, o.what);
+  std::string markdown = validation::render_markdown(checks, title);
+  if (!transforms.empty()) {
+    markdown += "\n## Transform accuracy against the long-double oracle\n\n```\n" +
+                validation::render_transform_table(transforms) + "```\n";
   }
-  return validation::all_passed(results) ? 0 : 1;
+  std::filesystem::create_directories(o.report_dir);
+  const std::filesystem::path stem = std::filesystem::path(o.report_dir) / ("check_" + o.what);
+  std::ofstream(stem.string() + ".json") << document.dump(2) << "\n";
+  std::ofstream md(stem.string() + ".md");
+  md << markdown;
+  if (!md) throw InvalidInput("cannot write reports to '" + o.report_dir + "'");
+  if (!o.json.empty()) write_json(o.json, document);
+  if (o.json != "-") {
+    if (!checks.empty()) std::cout << validation::render_table(checks);
+    if (!transforms.empty()) std::cout << "\n" << validation::render_transform_table(transforms);
+    std::cout << fmt::format("{}\nreport: {}.{{json,md}}\n", passed ? "PASS" : "FAIL", stem.string());
+  }
+  return passed ? 0 : 1;
 }
 
 }  // namespace
 
 Action add_check_command(CLI::App& app) {
   auto o = std::make_shared<CheckOptions>();
-  app.add_option("what", o->what, "which validations: reference, or all (default)")
-      ->check(CLI::IsMember({"reference", "all"}));
-  app.add_option("--impl", o->impl, "transform backends to include (all)")
-      ->check(CLI::IsMember({"all"}));
+  app.add_option("what", o->what, "which validations: reference, transforms, or all (default)")
+      ->check(CLI::IsMember({"reference", "transforms", "all"}));
+  app.add_option("--impl", o->impl, "transform backend to check, or all (default)");
   app.add_option("--json", o->json, "also write the results as JSON to FILE, or - for stdout");
   app.add_option("--report-dir", o->report_dir, "where the JSON and Markdown reports go")
       ->capture_default_str();
