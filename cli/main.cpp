@@ -33,11 +33,13 @@ int main(int argc, char** argv) {
   actions["spectrum"] = swell::cli::add_spectrum_command(*spectrum);
   auto* check = app.add_subcommand("check", "run swell's validations and write a report");
   actions["check"] = swell::cli::add_check_command(*check);
+  auto* fft = app.add_subcommand("fft", "transform one .npy array with one backend");
+  actions["fft"] = swell::cli::add_fft_command(*fft);
 
   // CLI11 says only "A subcommand is required" for a misspelt one; name it instead.
   if (argc > 1 && argv[1][0] != '-' && !actions.count(argv[1])) {
     std::cerr << "swell: error: unknown subcommand '" << argv[1]
-              << "'; valid: spectrum, check (run 'swell --help' for usage)\n";
+              << "'; valid: spectrum, check, fft (run 'swell --help' for usage)\n";
     return 2;
   }
   try {

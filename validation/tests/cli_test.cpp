@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <ostream>
+#include <set>
 #include <string>
 
 namespace {
@@ -116,7 +117,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"spectrum --model jonswap --hs 1 --tp 5 --omega 2:1:4", "b > a"},
         BadInput{"spectrum --model jonswap --hs one --tp 5", "hs"},
         BadInput{"spectrum --hs 1 --tp 5", "model"},
-        BadInput{"check transforms --report-dir /tmp/swell-cli-test", "transforms"},
+        BadInput{"check ocean --report-dir /tmp/swell-cli-test", "ocean"},
+        BadInput{"check transforms --impl fftx --report-dir /tmp/swell-cli-test", "fftx"},
         BadInput{"frobnicate", "frobnicate"}),
     [](const testing::TestParamInfo<BadInput>& info) {
       std::string name = std::to_string(info.index) + "_";
@@ -134,7 +136,16 @@ TEST(CliCheck, AllPassesAndWritesReports) {
   ASSERT_TRUE(json_file) << "no check_all.json";
   const auto doc = nlohmann::json::parse(json_file);
   EXPECT_EQ(doc.at("failed"), 0);
+  EXPECT_EQ(doc.at("pass"), true);
   EXPECT_GT(doc.at("passed").get<int>(), 40);
+  // Every exact backend's accuracy rows are there and pass.
+  std::set<std::string> impls;
+  for (const auto& row : doc.at("transforms")) {
+    impls.insert(row.at("impl").get<std::string>());
+    EXPECT_TRUE(row.at("pass").get<bool>()) << row.dump();
+    EXPECT_LE(row.at("rel_l2").get<double>(), row.at("bound").get<double>()) << row.dump();
+  }
+  EXPECT_EQ(impls, (std::set<std::string>{"naive", "radix2", "fftw"}));
   EXPECT_EQ(doc.at("checks").size(), doc.at("passed").get<std::size_t>());
   for (const auto& row : doc.at("checks")) {
     for (const char* key : {"check", "subject", "measured", "expected", "tolerance", "pass"}) {

@@ -1,0 +1,119 @@
+// 2-D transform speed of every backend: fft2d/<kind>/<impl>/<precision>/<N> for N = 64 … 4096,
+// fp32 and fp64, c2c inverse ("c2c") and c2r. Planning (FFTW_MEASURE: about 1 s at 2048²) is
+// done before timing and reported as the plan_seconds counter. Counters: GFLOP/s by the usual
+// convention (5 N² log2 N² per complex transform, half for c2r) and bytes/s (input + output).
+//
+//   build/bench/swell_fft_bench --benchmark_format=json --benchmark_out=fft.json
+//   SWELL_BENCH_IMPLS=radix2,fftw build/bench/swell_fft_bench --benchmark_filter=c2c/.*/fp32
+#include <benchmark/benchmark.h>
+#include <fftw3.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "swell/impls/transform.hpp"
+
+namespace {
+
+using namespace swell::impls;
+
+std::vector<std::string> implementations() {
+  const char* chosen = std::getenv("SWELL_BENCH_IMPLS");
+  if (!chosen || !*chosen) return backend_names();
+  std::vector<std::string> names;
+  std::stringstream list(chosen);
+  for (std::string name; std::getline(list, name, ',');) names.push_back(name);
+  return names;
+}
+
+std::string cpu_flags() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line, found;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("flags", 0) != 0) continue;
+    for (const char* flag : {" sse2", " avx ", " avx2", " fma", " avx512f", " avx512dq"}) {
+      if (line.find(flag) != std::string::npos) found += std::string(flag).substr(1) + " ";
+    }
+    break;
+  }
+  return found;
+}
+
+void run(benchmark::State& state, const std::string& impl, TransformSpec spec) {
+  const auto backend = make_backend(impl);
+  const auto plan_start = std::chrono::steady_clock::now();
+  std::unique_ptr<Plan> plan;
+  try {
+    plan = backend->plan(spec);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  const double plan_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - plan_start).count();
+  auto in = backend->allocate(spec.input_bytes());
+  auto out = backend->allocate(spec.output_bytes());
+  {
+    std::vector<unsigned char> bytes(spec.input_bytes());
+    std::mt19937 engine(7);
+    const std::size_t reals = spec.input_bytes() / real_size(spec.precision);
+    if (spec.precision == Precision::f32) {
+      auto* x = reinterpret_cast<float*>(bytes.data());
+      for (std::size_t i = 0; i < reals; ++i) x[i] = float(engine()) / 4294967296.0f - 0.5f;
+    } else {
+      auto* x = reinterpret_cast<double*>(bytes.data());
+      for (std::size_t i = 0; i < reals; ++i) x[i] = double(engine()) / 4294967296.0 - 0.5;
+    }
+    in->upload(bytes.data(), bytes.size());
+  }
+  for (auto _ : state) {
+    plan->execute(*in, *out);
+    benchmark::ClobberMemory();
+  }
+  const double n2 = double(spec.nx) * spec.ny;
+  const double flops = (spec.kind == Kind::c2c ? 5.0 : 2.5) * n2 * std::log2(n2);
+  state.counters["GFLOP/s"] = benchmark::Counter(flops * 1e-9, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["plan_seconds"] = plan_seconds;
+  state.SetBytesProcessed(state.iterations() * int64_t(spec.input_bytes() + spec.output_bytes()));
+}
+
+void register_all() {
+  for (const auto& impl : implementations()) {
+    for (Kind kind : {Kind::c2c, Kind::c2r}) {
+      for (Precision precision : {Precision::f32, Precision::f64}) {
+        for (int n = 64; n <= 4096; n *= 2) {
+          if (impl == "naive" && n > 128) continue;  // O(N³) per 2-D transform: minutes beyond
+          TransformSpec spec;
+          spec.nx = spec.ny = n;
+          spec.kind = kind;
+          spec.direction = Direction::inverse;
+          spec.precision = precision;
+          const std::string name = "fft2d/" + to_string(kind) + "/" + impl + "/" +
+                                   to_string(precision) + "/" + std::to_string(n);
+          benchmark::RegisterBenchmark(name.c_str(), run, impl, spec)
+              ->Unit(benchmark::kMillisecond);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  benchmark::AddCustomContext("fftw_version", fftw_version);
+  benchmark::AddCustomContext("cpu_flags", cpu_flags());
+  benchmark::AddCustomContext("compiler", __VERSION__);
+  benchmark::AddCustomContext("threads", "1 (one thread per transform unless an impl says threads=N)");
+  register_all();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

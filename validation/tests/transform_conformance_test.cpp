@@ -1,0 +1,404 @@
+// Conformance of every registered transform backend, written once and instantiated over
+// backend × precision × kind × size (DESIGN §4–5; issue "Transforms"):
+//  - accuracy against the long-double oracle within c·ε·log2 N (transform_checks.hpp says why),
+//  - FFTW's randomized self-test (Ergün) and the other invariants (fft_invariants.hpp),
+//  - in-place and batched execution, thread safety, and one kind of error for what a backend
+//    cannot do.
+// The long-double FFTW oracle used beyond 256² is itself checked here against the naive DFT.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <thread>
+
+#include "swell/impls/transform.hpp"
+#include "swell/validation/fft_invariants.hpp"
+#include "swell/validation/transform_checks.hpp"
+
+namespace {
+
+using namespace swell::impls;
+namespace fi = swell::fft_invariants;
+using swell::validation::measure_transform_accuracy;
+using swell::validation::transform_error_bound;
+
+// Test backends with fast planning; the MEASURE planner gets its own test below.
+std::string configured(const std::string& name) {
+  return name == "fftw" ? "fftw:planner=estimate" : name;
+}
+
+struct Case {
+  std::string backend;
+  Precision precision;
+  Kind kind;
+  Direction direction;
+  int nx, ny;
+};
+
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.backend << " " << to_string(c.precision) << " " << to_string(c.kind) << " "
+      << to_string(c.direction) << " " << c.nx << "×" << c.ny;
+}
+
+std::string case_name(const testing::TestParamInfo<Case>& info) {
+  const auto& c = info.param;
+  return c.backend + "_" + to_string(c.precision) + "_" + to_string(c.kind) +
+         (c.kind == Kind::c2c ? (c.direction == Direction::forward ? "fwd" : "inv") : "") + "_" +
+         std::to_string(c.nx) + "x" + std::to_string(c.ny);
+}
+
+std::vector<std::pair<int, int>> sizes_for(const Capabilities& caps) {
+  // 1-D: 1, 2 and (where allowed) small primes and odd sizes; 2-D up to 1024².
+  std::vector<std::pair<int, int>> sizes = {{1, 1}, {2, 1}, {8, 1}, {64, 1}, {1024, 1},
+                                            {2, 2}, {4, 8}, {16, 16}, {64, 32}, {256, 256},
+                                            {1024, 1024}};
+  if (caps.any_size) {
+    for (auto s : std::vector<std::pair<int, int>>{{3, 1}, {5, 1}, {7, 1}, {12, 1}, {15, 1},
+                                                   {5, 3}, {12, 7}, {15, 9}}) {
+      sizes.push_back(s);
+    }
+  }
+  return sizes;
+}
+
+std::vector<Case> accuracy_cases() {
+  std::vector<Case> cases;
+  for (const auto& name : backend_names()) {
+    const auto backend = make_backend(configured(name));
+    const auto caps = backend->capabilities();
+    if (!caps.exact) continue;
+    for (Precision p : caps.precisions) {
+      for (auto [nx, ny] : sizes_for(caps)) {
+        const double cost = double(nx) * ny * (nx + ny);
+        // fp80 results are compared with a long-double oracle: informative only where the oracle
+        // is the naive DFT (checking FFTW's long-double build against it), and naive-vs-naive is
+        // no test at all.
+        if (p == Precision::f80 && (name == "naive" || cost > 256.0 * 256 * 512)) continue;
+        if (name == "naive" && cost > 256.0 * 256 * 512) continue;  // O(N²): the oracle's range
+        for (auto [kind, direction] : {std::pair{Kind::c2c, Direction::forward},
+                                       std::pair{Kind::c2c, Direction::inverse},
+                                       std::pair{Kind::r2c, Direction::forward},
+                                       std::pair{Kind::c2r, Direction::inverse}}) {
+          cases.push_back({name, p, kind, direction, nx, ny});
+        }
+      }
+    }
+  }
+  return cases;
+}
+
+class Accuracy : public testing::TestWithParam<Case> {};
+
+TEST_P(Accuracy, WithinBoundOfLongDoubleOracle) {
+  const auto& c = GetParam();
+  const auto backend = make_backend(configured(c.backend));
+  TransformSpec spec;
+  spec.nx = c.nx;
+  spec.ny = c.ny;
+  spec.kind = c.kind;
+  spec.direction = c.direction;
+  spec.precision = c.precision;
+  const auto r = measure_transform_accuracy(*backend, spec, 42);
+  EXPECT_LE(r.rel_l2, r.bound) << spec.describe() << " against " << r.oracle;
+  EXPECT_LE(r.rel_linf, r.bound) << spec.describe() << " against " << r.oracle;
+  // A result exactly equal to the oracle in fp32/fp64 would mean the comparison compared
+  // nothing (the output was the oracle's); beyond tiny sizes, rounding is unavoidable.
+  if (c.precision != Precision::f80 && c.nx * c.ny >= 16) {
+    EXPECT_GT(r.rel_l2, 0.0);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllBackends, Accuracy, testing::ValuesIn(accuracy_cases()), case_name);
+
+// ------------------------------------------------------------------ invariants
+
+struct InvariantCase {
+  std::string backend;
+  Precision precision;
+  int nx, ny;
+};
+
+std::vector<InvariantCase> invariant_cases() {
+  std::vector<InvariantCase> cases;
+  for (const auto& name : backend_names()) {
+    const auto caps = make_backend(configured(name))->capabilities();
+    if (!caps.exact) continue;
+    for (Precision p : {Precision::f32, Precision::f64}) {
+      std::vector<std::pair<int, int>> sizes = {{1, 1}, {2, 1}, {16, 1}, {8, 4}, {32, 64}, {128, 128}};
+      if (caps.any_size) sizes.insert(sizes.end(), {{7, 1}, {12, 5}});
+      for (auto [nx, ny] : sizes) cases.push_back({name, p, nx, ny});
+    }
+  }
+  return cases;
+}
+
+void PrintTo(const InvariantCase& c, std::ostream* os) {
+  *os << c.backend << " " << to_string(c.precision) << " " << c.nx << "×" << c.ny;
+}
+
+std::string invariant_name(const testing::TestParamInfo<InvariantCase>& info) {
+  return info.param.backend + "_" + to_string(info.param.precision) + "_" +
+         std::to_string(info.param.nx) + "x" + std::to_string(info.param.ny);
+}
+
+template <typename T>
+fi::Transform<T> as_transform(const Plan& plan) {
+  return [&plan](const std::complex<T>* in, std::complex<T>* out) {
+    plan.execute(static_cast<const void*>(in), static_cast<void*>(out));
+  };
+}
+
+template <typename T>
+void expect_invariants(const Backend& backend, int nx, int ny, Precision p) {
+  TransformSpec spec;
+  spec.nx = nx;
+  spec.ny = ny;
+  spec.precision = p;
+  const auto forward = backend.plan(spec);
+  spec.direction = Direction::inverse;
+  const auto inverse = backend.plan(spec);
+  fi::Setup setup;
+  setup.nx = nx;
+  setup.ny = ny;
+  // Each side of an invariant carries up to one transform's error bound, some sides two or
+  // three transforms (linearity: three); 3 × the single-transform bound.
+  setup.tolerance = 3 * transform_error_bound(spec);
+  setup.seed = 7;
+  EXPECT_FFT_INVARIANTS_HOLD(T, as_transform<T>(*forward), as_transform<T>(*inverse), setup);
+
+  TransformSpec c2r_spec = spec;
+  c2r_spec.kind = Kind::c2r;
+  if (nx * ny <= 64 * 64) {  // the invariant builds its Hermitian spectrum by an O(N²) DFT
+    const auto c2r = backend.plan(c2r_spec);
+    fi::HalfToReal<T> half_to_real = [&](const std::complex<T>* in, T* out) {
+      c2r->execute(static_cast<const void*>(in), static_cast<void*>(out));
+    };
+    auto inv = setup;
+    inv.sign = +1;
+    EXPECT_TRUE(fi::c2r_matches_c2c<T>(half_to_real, as_transform<T>(*inverse), inv));
+  }
+}
+
+class Invariants : public testing::TestWithParam<InvariantCase> {};
+
+TEST_P(Invariants, ErgunSelfTestRoundTripParsevalHermitian) {
+  const auto& c = GetParam();
+  const auto backend = make_backend(configured(c.backend));
+  if (c.precision == Precision::f32) {
+    expect_invariants<float>(*backend, c.nx, c.ny, c.precision);
+  } else {
+    expect_invariants<double>(*backend, c.nx, c.ny, c.precision);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllBackends, Invariants, testing::ValuesIn(invariant_cases()), invariant_name);
+
+// ------------------------------------------------------------------ placement, batches, threads
+
+class EveryBackend : public testing::TestWithParam<std::string> {};
+
+std::vector<double> random_reals(std::size_t n, unsigned seed) {
+  std::mt19937_64 engine(seed);
+  std::vector<double> v(n);
+  for (auto& x : v) x = 2.0 * ((engine() >> 11) * 0x1.0p-53) - 1.0;
+  return v;
+}
+
+TEST_P(EveryBackend, InPlaceEqualsOutOfPlace) {
+  const auto backend = make_backend(configured(GetParam()));
+  TransformSpec spec;
+  spec.nx = 32;
+  spec.ny = 16;
+  spec.direction = Direction::inverse;
+  const auto out_of_place = backend->plan(spec);
+  spec.placement = Placement::in_place;
+  const auto in_place = backend->plan(spec);
+  const auto input = random_reals(2 * 32 * 16, 3);
+  std::vector<double> a(input.size()), b = input;
+  out_of_place->execute(static_cast<const void*>(input.data()), static_cast<void*>(a.data()));
+  in_place->execute(static_cast<const void*>(b.data()), static_cast<void*>(b.data()));
+  EXPECT_EQ(a, b);  // same algorithm on the same numbers
+}
+
+TEST_P(EveryBackend, BatchEqualsOneByOne) {
+  const auto backend = make_backend(configured(GetParam()));
+  for (auto [nx, ny, howmany] : {std::tuple{64, 1, 19}, std::tuple{16, 8, 3}}) {
+    TransformSpec spec;
+    spec.nx = nx;
+    spec.ny = ny;
+    spec.howmany = howmany;
+    spec.precision = Precision::f32;
+    const auto batch = backend->plan(spec);
+    spec.howmany = 1;
+    const auto single = backend->plan(spec);
+    const std::size_t n = std::size_t(nx) * ny;
+    const auto reals = random_reals(2 * n * howmany, 5);
+    std::vector<std::complex<float>> in(n * howmany), all(n * howmany), one(n);
+    for (std::size_t i = 0; i < in.size(); ++i) in[i] = {float(reals[2 * i]), float(reals[2 * i + 1])};
+    batch->execute(std::span<const std::complex<float>>(in), std::span<std::complex<float>>(all));
+    for (int b = 0; b < howmany; ++b) {
+      single->execute(std::span<const std::complex<float>>(in.data() + b * n, n),
+                      std::span<std::complex<float>>(one));
+      for (std::size_t i = 0; i < n; ++i) {
+        // Batched and single may vectorize differently: equal to a few ulps of the data.
+        ASSERT_LE(std::abs(all[b * n + i] - one[i]), 1e-5f) << "batch member " << b << ", " << i;
+      }
+    }
+  }
+}
+
+TEST_P(EveryBackend, PlansAreSafeToShareBetweenThreads) {
+  const auto backend = make_backend(configured(GetParam()));
+  TransformSpec spec;
+  spec.nx = spec.ny = 128;
+  const auto plan = backend->plan(spec);
+  const auto input = random_reals(2 * 128 * 128, 9);
+  std::vector<double> expected(input.size());
+  plan->execute(static_cast<const void*>(input.data()), static_cast<void*>(expected.data()));
+  std::vector<std::vector<double>> outputs(4, std::vector<double>(input.size()));
+  std::vector<std::thread> threads;
+  for (auto& out : outputs) {
+    threads.emplace_back([&, o = out.data()] {
+      for (int repeat = 0; repeat < 5; ++repeat) {
+        plan->execute(static_cast<const void*>(input.data()), static_cast<void*>(o));
+      }
+    });
+  }
+  for (auto& t : threads) t.join();
+  for (const auto& out : outputs) EXPECT_EQ(out, expected);
+}
+
+TEST_P(EveryBackend, RejectsWhatItCannotDoNamingBackendSizeAndRule) {
+  const auto backend = make_backend(configured(GetParam()));
+  auto expect_refusal = [&](TransformSpec spec, const std::string& words) {
+    try {
+      backend->plan(spec);
+      ADD_FAILURE() << "no error for " << spec.describe();
+    } catch (const UnsupportedTransform& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(backend->name()), std::string::npos) << what;
+      EXPECT_NE(what.find(words), std::string::npos) << what;
+    }
+  };
+  TransformSpec zero;
+  zero.nx = 0;
+  expect_refusal(zero, "≥ 1");
+  TransformSpec real_inverse;
+  real_inverse.nx = 8;
+  real_inverse.kind = Kind::r2c;
+  real_inverse.direction = Direction::inverse;
+  expect_refusal(real_inverse, "forward only");
+  TransformSpec in_place_real;
+  in_place_real.nx = 8;
+  in_place_real.kind = Kind::c2r;
+  in_place_real.direction = Direction::inverse;
+  in_place_real.placement = Placement::in_place;
+  expect_refusal(in_place_real, "in-place");
+  if (!backend->capabilities().any_size) {
+    TransformSpec twelve;
+    twelve.nx = 12;
+    expect_refusal(twelve, "powers of two");
+    TransformSpec tall;
+    tall.nx = 16;
+    tall.ny = 24;
+    expect_refusal(tall, "24");
+  }
+}
+
+TEST_P(EveryBackend, TypedExecuteChecksSizesAndTypes) {
+  const auto backend = make_backend(configured(GetParam()));
+  TransformSpec spec;
+  spec.nx = 8;
+  spec.precision = Precision::f32;
+  const auto plan = backend->plan(spec);
+  std::vector<std::complex<float>> in(8), out(8), short_out(7);
+  std::vector<std::complex<double>> wrong_type(8);
+  EXPECT_NO_THROW(plan->execute(std::span<const std::complex<float>>(in), std::span<std::complex<float>>(out)));
+  EXPECT_THROW(plan->execute(std::span<const std::complex<float>>(in), std::span<std::complex<float>>(short_out)),
+               swell::InvalidInput);
+  EXPECT_THROW(plan->execute(std::span<const std::complex<double>>(wrong_type), std::span<std::complex<float>>(out)),
+               swell::InvalidInput);
+  EXPECT_THROW(plan->execute(std::span<const std::complex<float>>(in), std::span<std::complex<float>>(in)),
+               swell::InvalidInput);  // aliased buffers for an out-of-place plan
+}
+
+TEST_P(EveryBackend, OutOfPlaceLeavesInputBitIdenticalForEveryKind) {
+  const auto backend = make_backend(configured(GetParam()));
+  for (Kind kind : {Kind::c2c, Kind::r2c, Kind::c2r}) {
+    TransformSpec spec;
+    spec.nx = 16;
+    spec.ny = 8;
+    spec.kind = kind;
+    spec.direction = kind == Kind::r2c ? Direction::forward : Direction::inverse;
+    const auto plan = backend->plan(spec);
+    const auto input = random_reals(spec.input_bytes() / sizeof(double), 11);
+    auto copy = input;
+    std::vector<double> out(spec.output_bytes() / sizeof(double));
+    plan->execute(static_cast<const void*>(copy.data()), static_cast<void*>(out.data()));
+    EXPECT_EQ(copy, input) << to_string(kind);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Registry, EveryBackend, testing::ValuesIn(backend_names()),
+                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
+
+// ------------------------------------------------------------------ registry and FFTW options
+
+TEST(Registry, UnknownNamesAndOptionsListWhatIsValid) {
+  try {
+    make_backend("fftx");
+    FAIL();
+  } catch (const swell::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("radix2"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(make_backend("fftw:planner=fast"), swell::InvalidInput);
+  EXPECT_THROW(make_backend("radix2:threads=0"), swell::InvalidInput);
+  EXPECT_THROW(make_backend("radix2:color=blue"), swell::InvalidInput);
+  EXPECT_NO_THROW(make_backend("fftw:planner=estimate,threads=2"));
+}
+
+TEST(Fftw, MeasurePlannerAndThreadsAgreeWithEstimate) {
+  // MEASURE may pick other algorithms: equal to within the error bound, not bit for bit.
+  TransformSpec spec;
+  spec.nx = spec.ny = 64;
+  const auto input = random_reals(2 * 64 * 64, 13);
+  std::vector<double> a(input.size()), b(input.size());
+  make_backend("fftw:planner=estimate")->plan(spec)->execute(input.data(), a.data());
+  make_backend("fftw:planner=measure,threads=2")->plan(spec)->execute(input.data(), b.data());
+  double err = 0, ref = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) err += (a[i] - b[i]) * (a[i] - b[i]), ref += a[i] * a[i];
+  EXPECT_LE(std::sqrt(err / ref), 2 * transform_error_bound(spec));
+}
+
+TEST(Fftw, MisalignedArraysGoThroughAlignedCopies) {
+  TransformSpec spec;
+  spec.nx = 64;
+  spec.precision = Precision::f32;
+  const auto plan = make_backend("fftw:planner=estimate")->plan(spec);
+  // Offset by one float: misaligned for FFTW's SIMD codelets.
+  std::vector<float> storage_in(2 * 64 + 1), storage_out(2 * 64 + 1), aligned_out(2 * 64);
+  const auto reals = random_reals(2 * 64, 17);
+  for (int i = 0; i < 128; ++i) storage_in[i + 1] = float(reals[i]);
+  plan->execute(storage_in.data() + 1, storage_out.data() + 1);
+  std::vector<float> aligned_in(storage_in.begin() + 1, storage_in.end());
+  auto buffer_in = make_backend("fftw")->allocate(128 * sizeof(float));
+  auto buffer_out = make_backend("fftw")->allocate(128 * sizeof(float));
+  buffer_in->upload(aligned_in.data(), 128 * sizeof(float));
+  plan->execute(*buffer_in, *buffer_out);
+  buffer_out->download(aligned_out.data(), 128 * sizeof(float));
+  EXPECT_TRUE(std::equal(aligned_out.begin(), aligned_out.end(), storage_out.begin() + 1));
+}
+
+TEST(Null, CopiesAndIsNotExact) {
+  const auto backend = make_backend("null");
+  EXPECT_FALSE(backend->capabilities().exact);
+  TransformSpec spec;
+  spec.nx = 8;
+  const auto input = random_reals(16, 19);
+  std::vector<double> out(16);
+  backend->plan(spec)->execute(input.data(), out.data());
+  EXPECT_EQ(out, input);
+}
+
+}  // namespace
