@@ -65,7 +65,10 @@ class Npy : public ::testing::Test {
 std::string npy_file(int major, const std::string& dict, std::size_t total, const std::string& data = "") {
   const std::size_t length_bytes = major == 1 ? 2 : 4;
   const std::size_t prefix = 8 + length_bytes;
-  EXPECT_GE(total, prefix + dict.size() + 1) << "test bug: header does not fit " << total;
+  if (total < prefix + dict.size() + 1) {
+    ADD_FAILURE() << "test bug: a " << dict.size() << "-byte dict does not fit " << total;
+    return "";
+  }
   const std::size_t header_length = total - prefix;
   std::string out = "\x93NUMPY"s + char(major) + '\0';
   for (std::size_t i = 0; i < length_bytes; ++i) out += char((header_length >> (8 * i)) & 0xff);
@@ -257,7 +260,7 @@ TEST_F(Npy, ReadsOtherValidHeaderLayouts) {
       {"v2", npy_file(2, kF8Dict, 128, kOneTwoThree)},
       {"v3", npy_file(3, kF8Dict, 128, kOneTwoThree)},
       // Keys in another order, double quotes, no trailing comma, odd whitespace.
-      {"order", npy_file(1, "{\"shape\":(3 ,),'descr' : \"<f8\",\n 'fortran_order':False}", 64,
+      {"order", npy_file(1, "{\"shape\":(3 ,),'descr' : \"<f8\",\n 'fortran_order':False}", 80,
                          kOneTwoThree)},
       // Python 2 numpy wrote shapes as longs: (3L,).
       {"py2long", npy_file(1, "{'descr': '<f8', 'fortran_order': False, 'shape': (3L,), }", 80,
@@ -277,7 +280,7 @@ TEST_F(Npy, ReadsOtherValidHeaderLayouts) {
 TEST_F(Npy, ReadsAnyRank) {
   // The reader is general; it is `swell fft` that needs rank 1 or 2.
   const auto scalar = read_npy(write_bytes(
-      "r0.npy", npy_file(1, "{'descr': '<f8', 'fortran_order': False, 'shape': (), }", 64,
+      "r0.npy", npy_file(1, "{'descr': '<f8', 'fortran_order': False, 'shape': (), }", 128,
                          kOneTwoThree.substr(0, 8))));
   EXPECT_TRUE(scalar.shape.empty());
   EXPECT_EQ(scalar.values<double>(), (std::vector<double>{1.0}));
