@@ -1,16 +1,42 @@
 // radix2: Cooley–Tukey radix-2 decimation in time, powers of two only, fp32 and fp64.
 //
 // Layout for speed: every pass (rows along x, then columns along y) takes a block of L signals
-// (L = 16 floats or 8 doubles: one AVX-512 register) into a scratch array in split form,
-// re[i·L + lane], im[i·L + lane], in bit-reversed order. Each butterfly then works on whole
-// vectors — one twiddle broadcast against L signals — with no shuffles, and the block (L·N
-// complex values) stays in L1/L2 for all log2 N stages. Twiddles come from long double cos/sin.
-// Signals left over when a count is not a multiple of L go through the same code with L = 1.
+// (L = 16 floats or 8 doubles: one AVX-512 register) into a per-thread scratch array of
+// elements {re vector, im vector}: element i holds sample i of all L signals, split into real
+// and imaginary lanes, in bit-reversed order. Each butterfly then works on whole vectors — one
+// twiddle broadcast against L signals — with no shuffles. Twiddles come from long double
+// cos/sin; every butterfly is the plain radix-2 one, a ± w·b, with the table twiddle w.
+//
+// What makes it fast (a 2-D transform is mostly memory traffic, not arithmetic):
+//  * Two radix-2 stages per sweep over the scratch (stages h and 2h on 4 elements held in
+//    registers), which halves the loads and stores of the butterflies.
+//  * The first two stages (twiddles 1 and ∓i, no multiplications) are done while gathering
+//    the input, and the last log2 R stages (R = 4 … 16, every span ≥ 256) while scattering the
+//    output, so the scratch (up to 512 KB, in L2) is swept only for the stages in between.
+//  * Those middle stages run chunk by chunk on 256 elements (32 KB, fits L1); only for
+//    n > 4096 do a few stages sweep the whole scratch. The L2 ↔ L1 traffic, not arithmetic,
+//    is what limits the butterflies at n ≥ 1024.
+// Every butterfly is still the plain radix-2 one with the same table twiddle, so the result is
+// the same as stage-by-stage radix 2; fusing only keeps values in registers between stages.
+//  * Gathering L rows is an L×L in-register transpose of full 64-byte loads (AVX-512), not
+//    scalar moves; gathering L columns is two loads and two permutes per row. The strided
+//    column accesses are software-prefetched a few rows ahead, since the hardware prefetchers
+//    do not follow 16 KB strides.
+// Signals left over when a count is not a multiple of L, and sizes too small for the fused
+// passes, go through the same stages with scalar gathers (unused lanes hold zeros).
 #include <omp.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <complex>
+#include <cstddef>
 #include <numbers>
 #include <vector>
+
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
 
 #include "backends.hpp"
 #include "complex_engine.hpp"
@@ -18,20 +44,48 @@
 namespace swell::impls {
 namespace {
 
+// One 64-byte vector of reals (GCC/Clang vector extension: zmm with AVX-512, split into
+// narrower registers otherwise).
+template <typename T>
+struct VecOf;
+template <>
+struct VecOf<float> {
+  typedef float type __attribute__((vector_size(64)));
+};
+template <>
+struct VecOf<double> {
+  typedef double type __attribute__((vector_size(64)));
+};
+template <typename T>
+using Vec = typename VecOf<T>::type;
+template <typename T>
+constexpr int kLanes = 64 / sizeof(T);
+// A scratch element: one sample of L signals.
+template <typename T>
+struct Cx {
+  Vec<T> re, im;
+};
+
 template <typename T>
 struct Axis {
   int n = 1;
-  std::vector<int> bit_reversed;
+  std::vector<int> bit_reversed;      // over log2 n bits (small sizes)
+  std::vector<int> quarter_reversed;  // over log2 n − 2 bits, for q < n/4 (fused first pass)
   // Stage with butterfly span h uses w_j = e^(∓iπ j/h), j < h, stored at [h + j].
   std::vector<T> w_re, w_im_forward, w_im_inverse;
 
   explicit Axis(int size) : n(size), bit_reversed(size), w_re(size), w_im_forward(size), w_im_inverse(size) {
     int bits = 0;
     while ((1 << bits) < n) ++bits;
-    for (int i = 0; i < n; ++i) {
+    const auto reverse = [](int i, int width) {
       int r = 0;
-      for (int b = 0; b < bits; ++b) r |= ((i >> b) & 1) << (bits - 1 - b);
-      bit_reversed[i] = r;
+      for (int b = 0; b < width; ++b) r |= ((i >> b) & 1) << (width - 1 - b);
+      return r;
+    };
+    for (int i = 0; i < n; ++i) bit_reversed[i] = reverse(i, bits);
+    if (n >= 4) {
+      quarter_reversed.resize(n / 4);
+      for (int i = 0; i < n / 4; ++i) quarter_reversed[i] = reverse(i, bits - 2);
     }
     for (int h = 1; h < n; h <<= 1) {
       for (int j = 0; j < h; ++j) {
@@ -44,123 +98,451 @@ struct Axis {
   }
 };
 
-// log2 n radix-2 stages on L signals held split and bit-reversed in re/im.
-template <typename T, int L>
-void butterflies(T* __restrict re, T* __restrict im, const Axis<T>& axis, bool inverse) {
-  const int n = axis.n;
-  for (int s = 0; s < n; s += 2) {  // span 1: w = 1
-    T* ar = re + s * L;
-    T* ai = im + s * L;
-    for (int l = 0; l < L; ++l) {
-      const T br = ar[L + l], bi = ai[L + l];
-      ar[L + l] = ar[l] - br;
-      ai[L + l] = ai[l] - bi;
-      ar[l] += br;
-      ai[l] += bi;
-    }
-  }
-  const T* w_im_table = inverse ? axis.w_im_inverse.data() : axis.w_im_forward.data();
-  for (int h = 2; h < n; h <<= 1) {
-    const T* wr = axis.w_re.data() + h;
-    const T* wi = w_im_table + h;
-    for (int s = 0; s < n; s += 2 * h) {
-      for (int j = 0; j < h; ++j) {
-        const T c = wr[j], d = wi[j];
-        T* ar = re + (s + j) * L;
-        T* ai = im + (s + j) * L;
-        T* br = ar + h * L;
-        T* bi = ai + h * L;
-#pragma GCC ivdep
-        for (int l = 0; l < L; ++l) {
-          const T tr = c * br[l] - d * bi[l];
-          const T ti = c * bi[l] + d * br[l];
-          br[l] = ar[l] - tr;
-          bi[l] = ai[l] - ti;
-          ar[l] += tr;
-          ai[l] += ti;
-        }
-      }
+// ------------------------------------------------------------------ butterflies
+
+// a, b ← a + w·b, a − w·b with w = c + i·d.
+template <typename T>
+inline void butterfly(Cx<T>& a, Cx<T>& b, T c, T d) {
+  const Vec<T> tr = c * b.re - d * b.im;
+  const Vec<T> ti = c * b.im + d * b.re;
+  b.re = a.re - tr;
+  b.im = a.im - ti;
+  a.re += tr;
+  a.im += ti;
+}
+
+// w = 1: no multiplication.
+template <typename T>
+inline void butterfly_one(Cx<T>& a, Cx<T>& b) {
+  const Cx<T> t = b;
+  b.re = a.re - t.re;
+  b.im = a.im - t.im;
+  a.re += t.re;
+  a.im += t.im;
+}
+
+// w = e^(∓iπ/2) = ∓i (forward −i, inverse +i): a swap and a sign, exact.
+template <typename T>
+inline void butterfly_i(Cx<T>& a, Cx<T>& b, bool inverse) {
+  const Vec<T> tr = inverse ? -b.im : b.im;
+  const Vec<T> ti = inverse ? b.re : -b.re;
+  b.re = a.re - tr;
+  b.im = a.im - ti;
+  a.re += tr;
+  a.im += ti;
+}
+
+// One radix-2 stage of span h on elements [begin, end).
+template <typename T>
+void stage(Cx<T>* __restrict x, int begin, int end, int h, const T* wr, const T* wi) {
+  for (int s = begin; s < end; s += 2 * h) {
+    for (int j = 0; j < h; ++j) {
+      Cx<T> a = x[s + j], b = x[s + j + h];
+      butterfly(a, b, wr[h + j], wi[h + j]);
+      x[s + j] = a;
+      x[s + j + h] = b;
     }
   }
 }
+
+// Radix-2 stages h and 2h on elements [begin, end) in one sweep: the four elements a group of
+// 4h touches at offset j stay in registers between the two stages.
+template <typename T>
+void stage_pair(Cx<T>* __restrict x, int begin, int end, int h, const T* wr, const T* wi) {
+  for (int s = begin; s < end; s += 4 * h) {
+    Cx<T>* p = x + s;
+    for (int j = 0; j < h; ++j) {
+      Cx<T> a = p[j], b = p[j + h], c = p[j + 2 * h], d = p[j + 3 * h];
+      butterfly(a, b, wr[h + j], wi[h + j]);
+      butterfly(c, d, wr[h + j], wi[h + j]);
+      butterfly(a, c, wr[2 * h + j], wi[2 * h + j]);
+      butterfly(b, d, wr[3 * h + j], wi[3 * h + j]);  // W_2h[j + h]
+      p[j] = a;
+      p[j + h] = b;
+      p[j + 2 * h] = c;
+      p[j + 3 * h] = d;
+    }
+  }
+}
+
+// Stages first, 2·first, …, last (spans, powers of two) on [begin, end), two at a time.
+template <typename T>
+void stages(Cx<T>* x, int begin, int end, int first, int last, const T* wr, const T* wi) {
+  int h = first;
+  for (; 2 * h <= last; h *= 4) stage_pair(x, begin, end, h, wr, wi);
+  if (h <= last) stage(x, begin, end, h, wr, wi);
+}
+
+// ------------------------------------------------------------------ gathers and scatters
+//
+// An IO gives the L signals of a block sample by sample: load1/store1 one sample m (natural
+// order), load/store kGroup consecutive samples k … k + kGroup − 1.
+
+#if defined(__AVX512F__)
+inline Vec<float> permute2(Vec<float> a, __m512i index, Vec<float> b) {
+  return (Vec<float>)_mm512_permutex2var_ps((__m512)a, index, (__m512)b);
+}
+inline Vec<double> permute2(Vec<double> a, __m512i index, Vec<double> b) {
+  return (Vec<double>)_mm512_permutex2var_pd((__m512d)a, index, (__m512d)b);
+}
+
+// Index vectors for two-source permutes (sources a, b; b's lanes numbered L … 2L − 1).
+template <typename T>
+struct Shuffles {
+  static constexpr int L = kLanes<T>;
+  using Index = std::conditional_t<sizeof(T) == 4, int, long long>;
+  static constexpr int kSteps = sizeof(T) == 4 ? 4 : 3;  // log2 L
+  // In-register transpose: step s swaps the off-diagonal blocks of size b = L >> (s + 1)
+  // between vectors i and i + b.
+  alignas(64) Index lo[kSteps][L]{};
+  alignas(64) Index hi[kSteps][L]{};
+  // Interleaved complex pairs (a, b) ↔ split re / im.
+  alignas(64) Index even[L]{}, odd[L]{};    // re from a,b = [re im re im …]; im likewise
+  alignas(64) Index low[L]{}, high[L]{};    // re, im → first / second half interleaved
+
+  constexpr Shuffles() {
+    for (int s = 0; s < kSteps; ++s) {
+      const int b = L >> (s + 1);
+      for (int p = 0; p < L; ++p) {
+        lo[s][p] = (p & b) ? L + p - b : p;
+        hi[s][p] = (p & b) ? L + p : p + b;
+      }
+    }
+    for (int p = 0; p < L; ++p) {
+      even[p] = 2 * p;
+      odd[p] = 2 * p + 1;
+      low[p] = (p & 1) ? L + p / 2 : p / 2;
+      high[p] = (p & 1) ? L + L / 2 + p / 2 : L / 2 + p / 2;
+    }
+  }
+};
+template <typename T>
+constexpr Shuffles<T> kShuffles{};
+
+inline __m512i index_vector(const int* p) { return _mm512_load_si512(p); }
+inline __m512i index_vector(const long long* p) { return _mm512_load_si512(p); }
+
+// v[i][p] ← v[p][i]: log2 L steps of L two-source permutes.
+template <typename T>
+inline void transpose(Vec<T> (&v)[kLanes<T>]) {
+  constexpr int L = kLanes<T>;
+  const auto& tab = kShuffles<T>;
+#pragma GCC unroll 4
+  for (int s = 0; s < Shuffles<T>::kSteps; ++s) {
+    const int b = L >> (s + 1);
+    const __m512i lo = index_vector(tab.lo[s]), hi = index_vector(tab.hi[s]);
+#pragma GCC unroll 16
+    for (int i = 0; i < L; ++i) {
+      if (i & b) continue;
+      const Vec<T> x = permute2(v[i], lo, v[i + b]);
+      const Vec<T> y = permute2(v[i], hi, v[i + b]);
+      v[i] = x;
+      v[i + b] = y;
+    }
+  }
+}
+
+template <typename T>
+inline Vec<T> load_vec(const std::complex<T>* p) {
+  Vec<T> v;
+  __builtin_memcpy(&v, static_cast<const void*>(p), sizeof v);
+  return v;
+}
+template <typename T>
+inline void store_vec(std::complex<T>* p, Vec<T> v) {
+  __builtin_memcpy(static_cast<void*>(p), &v, sizeof v);
+}
+#endif
+
+// L whole rows of length n: row l at src + l·n, written to dst + l·n (may equal src).
+template <typename T>
+struct RowsIO {
+  static constexpr int L = kLanes<T>;
+  static constexpr int kGroup = L / 2;  // complex values per 64-byte load
+  const std::complex<T>* src;
+  std::complex<T>* dst;
+  std::size_t n;
+
+  Cx<T> load1(int m) const {
+    Cx<T> x;
+    for (int l = 0; l < L; ++l) {
+      x.re[l] = src[l * n + m].real();
+      x.im[l] = src[l * n + m].imag();
+    }
+    return x;
+  }
+  void store1(int m, const Cx<T>& x) const {
+    for (int l = 0; l < L; ++l) dst[l * n + m] = std::complex<T>(x.re[l], x.im[l]);
+  }
+#if defined(__AVX512F__)
+  // One 64-byte load per row, then a transpose: vector 2t holds the real parts of sample
+  // k + t across the L rows, vector 2t + 1 the imaginary parts.
+  void load(int k, Cx<T>* x) const {
+    Vec<T> v[L];
+#pragma GCC unroll 16
+    for (int l = 0; l < L; ++l) v[l] = load_vec(src + l * n + k);
+    transpose<T>(v);
+#pragma GCC unroll 8
+    for (int t = 0; t < kGroup; ++t) x[t] = {v[2 * t], v[2 * t + 1]};
+  }
+  void store(int k, const Cx<T>* x) const {
+    Vec<T> v[L];
+#pragma GCC unroll 8
+    for (int t = 0; t < kGroup; ++t) {
+      v[2 * t] = x[t].re;
+      v[2 * t + 1] = x[t].im;
+    }
+    transpose<T>(v);
+#pragma GCC unroll 16
+    for (int l = 0; l < L; ++l) store_vec(dst + l * n + k, v[l]);
+  }
+#else
+  void load(int k, Cx<T>* x) const {
+    for (int t = 0; t < kGroup; ++t) x[t] = load1(k + t);
+  }
+  void store(int k, const Cx<T>* x) const {
+    for (int t = 0; t < kGroup; ++t) store1(k + t, x[t]);
+  }
+#endif
+};
+
+// L adjacent columns of an array with row stride `stride`, in place: sample m of the block is
+// the L complex values (128 bytes) at data + m·stride.
+template <typename T>
+struct ColumnsIO {
+  static constexpr int L = kLanes<T>;
+  static constexpr int kGroup = L / 2;
+  // Rows ahead to prefetch: enough to cover memory latency at 16 KB strides, few enough
+  // for the miss buffers.
+  static constexpr int kAhead = 8;
+  std::complex<T>* data;
+  std::size_t stride;
+  int n;  // rows
+
+#if defined(__AVX512F__)
+  Cx<T> load1(int m) const {
+    const std::complex<T>* p = data + m * stride;
+    const Vec<T> a = load_vec(p), b = load_vec(p + L / 2);
+    const auto& tab = kShuffles<T>;
+    return {permute2(a, index_vector(tab.even), b), permute2(a, index_vector(tab.odd), b)};
+  }
+  void store1(int m, const Cx<T>& x) const {
+    std::complex<T>* p = data + m * stride;
+    const auto& tab = kShuffles<T>;
+    store_vec(p, permute2(x.re, index_vector(tab.low), x.im));
+    store_vec(p + L / 2, permute2(x.re, index_vector(tab.high), x.im));
+  }
+#else
+  Cx<T> load1(int m) const {
+    const std::complex<T>* p = data + m * stride;
+    Cx<T> x;
+    for (int l = 0; l < L; ++l) {
+      x.re[l] = p[l].real();
+      x.im[l] = p[l].imag();
+    }
+    return x;
+  }
+  void store1(int m, const Cx<T>& x) const {
+    std::complex<T>* p = data + m * stride;
+    for (int l = 0; l < L; ++l) p[l] = std::complex<T>(x.re[l], x.im[l]);
+  }
+#endif
+  void prefetch(int m, int rw) const {
+    if (m >= n) return;
+    const char* p = reinterpret_cast<const char*>(data + m * stride);
+    if (rw) {
+      __builtin_prefetch(p, 1);
+      __builtin_prefetch(p + 64, 1);
+    } else {
+      __builtin_prefetch(p, 0);
+      __builtin_prefetch(p + 64, 0);
+    }
+  }
+  void load(int k, Cx<T>* x) const {
+    for (int t = 0; t < kGroup; ++t) {
+      prefetch(k + t + kAhead, 0);
+      x[t] = load1(k + t);
+    }
+  }
+  void store(int k, const Cx<T>* x) const {
+    for (int t = 0; t < kGroup; ++t) {
+      prefetch(k + t + kAhead, 1);
+      store1(k + t, x[t]);
+    }
+  }
+};
+
+// Up to L signals with any strides, scalar: leftover rows of a batch, narrow columns. Lanes
+// beyond `count` are zero and never stored.
+template <typename T>
+struct StridedIO {
+  static constexpr int kGroup = kLanes<T> / 2;
+  const std::complex<T>* src;
+  std::complex<T>* dst;
+  std::ptrdiff_t sample_stride, signal_stride;
+  int count;
+
+  Cx<T> load1(int m) const {
+    Cx<T> x{};
+    for (int l = 0; l < count; ++l) {
+      const std::complex<T> z = src[m * sample_stride + l * signal_stride];
+      x.re[l] = z.real();
+      x.im[l] = z.imag();
+    }
+    return x;
+  }
+  void store1(int m, const Cx<T>& x) const {
+    for (int l = 0; l < count; ++l) {
+      dst[m * sample_stride + l * signal_stride] = std::complex<T>(x.re[l], x.im[l]);
+    }
+  }
+  void load(int k, Cx<T>* x) const {
+    for (int t = 0; t < kGroup; ++t) x[t] = load1(k + t);
+  }
+  void store(int k, const Cx<T>* x) const {
+    for (int t = 0; t < kGroup; ++t) store1(k + t, x[t]);
+  }
+};
+
+// ------------------------------------------------------------------ one block of L signals
 
 // Scratch per thread, reused across calls: a fresh allocation of this size per block would be
 // an mmap and page faults every time.
 template <typename T>
-T* scratch(std::size_t count) {
-  thread_local std::vector<T> buffer;
+Cx<T>* scratch(std::size_t count) {
+  thread_local std::vector<Cx<T>> buffer;
   if (buffer.size() < count) buffer.resize(count);
   return buffer.data();
 }
 
-// Transforms `count` rows of length axis.n (row r at src + r·n) into dst.
-template <typename T, int L>
-void row_block(const std::complex<T>* src, std::complex<T>* dst, const Axis<T>& axis, bool inverse) {
-  const int n = axis.n;
-  T* re = scratch<T>(2 * std::size_t(n) * L);
-  T* im = re + std::size_t(n) * L;
-  for (int l = 0; l < L; ++l) {
-    const std::complex<T>* row = src + std::size_t(l) * n;
-    for (int i = 0; i < n; ++i) {
-      const int k = axis.bit_reversed[i];
-      re[i * L + l] = row[k].real();
-      im[i * L + l] = row[k].imag();
+// Elements per chunk for the middle stages: 256 × 128 bytes = 32 KB, inside L1 (48 KB).
+constexpr int kChunk = 256;
+
+// The last log2 R stages, spans n/R … n/2, fused with the scatter. With q = n/R, the R
+// elements j + r·q (r < R) form a closed group under those stages, and they are exactly the
+// outputs at those natural positions: each is read once from scratch and written to the signals.
+template <typename T, int R, typename IO>
+void scatter_last(const IO& io, const Cx<T>* __restrict x, int n, const T* wr, const T* wi) {
+  constexpr int G = IO::kGroup;
+  const int q = n / R;
+  for (int k = 0; k < q; k += G) {
+    Cx<T> out[R][G];
+    for (int t = 0; t < G; ++t) {
+      const int j = k + t;
+      Cx<T> e[R];
+#pragma GCC unroll 16
+      for (int r = 0; r < R; ++r) e[r] = x[j + r * q];
+      // Stage of span h = step·q pairs r with r + step; position j + r·q sits at offset
+      // j + (r mod step)·q in its group of 2h, which indexes the twiddle.
+#pragma GCC unroll 4
+      for (int step = 1; step < R; step *= 2) {
+        const int h = step * q;
+#pragma GCC unroll 16
+        for (int r = 0; r < R; ++r) {
+          if (r & step) continue;
+          const int w = h + j + (r & (step - 1)) * q;
+          butterfly(e[r], e[r + step], wr[w], wi[w]);
+        }
+      }
+#pragma GCC unroll 16
+      for (int r = 0; r < R; ++r) out[r][t] = e[r];
     }
-  }
-  butterflies<T, L>(re, im, axis, inverse);
-  for (int l = 0; l < L; ++l) {
-    std::complex<T>* row = dst + std::size_t(l) * n;
-    for (int i = 0; i < n; ++i) row[i] = std::complex<T>(re[i * L + l], im[i * L + l]);
+    for (int r = 0; r < R; ++r) io.store(k + r * q, out[r]);
   }
 }
 
-// Transforms L adjacent columns (starting at data + column) of an nx-wide array, in place.
-template <typename T, int L>
-void column_block(std::complex<T>* data, int nx, const Axis<T>& axis, bool inverse) {
+template <typename T, typename IO>
+void transform_block(const IO& io, const Axis<T>& axis, bool inverse) {
   const int n = axis.n;
-  T* re = scratch<T>(2 * std::size_t(n) * L);
-  T* im = re + std::size_t(n) * L;
-  for (int i = 0; i < n; ++i) {
-    const std::complex<T>* p = data + std::size_t(axis.bit_reversed[i]) * nx;
-    for (int l = 0; l < L; ++l) {
-      re[i * L + l] = p[l].real();
-      im[i * L + l] = p[l].imag();
+  Cx<T>* __restrict x = scratch<T>(n);
+  const T* wr = axis.w_re.data();
+  const T* wi = inverse ? axis.w_im_inverse.data() : axis.w_im_forward.data();
+  constexpr int G = IO::kGroup;
+
+  if (n < 16 || n / 4 < G) {
+    // Small: plain bit-reversed gather, every stage, natural-order scatter.
+    for (int m = 0; m < n; ++m) x[axis.bit_reversed[m]] = io.load1(m);
+    stages(x, 0, n, 1, n / 2, wr, wi);
+    for (int m = 0; m < n; ++m) io.store1(m, x[m]);
+    return;
+  }
+
+  const int q = n / 4;
+  // Gather with stages 1 and 2. Scratch position 4p + r holds sample bitrev(4p + r), which
+  // is s + {0, n/2, n/4, 3n/4}[r] with s = bitrev over log2 n − 2 bits of p: the four quarters
+  // of the input at the same offset s make one group of four.
+  for (int k = 0; k < q; k += G) {
+    Cx<T> in[4][G];
+    for (int r = 0; r < 4; ++r) io.load(k + r * q, in[r]);
+    for (int t = 0; t < G; ++t) {
+      Cx<T> a = in[0][t], b = in[2][t], c = in[1][t], d = in[3][t];
+      butterfly_one(a, b);  // span 1, w = 1
+      butterfly_one(c, d);
+      butterfly_one(a, c);  // span 2, w = 1 and ∓i
+      butterfly_i(b, d, inverse);
+      Cx<T>* p = x + 4 * axis.quarter_reversed[k + t];
+      p[0] = a;
+      p[1] = b;
+      p[2] = c;
+      p[3] = d;
     }
   }
-  butterflies<T, L>(re, im, axis, inverse);
-  for (int i = 0; i < n; ++i) {
-    std::complex<T>* p = data + std::size_t(i) * nx;
-    for (int l = 0; l < L; ++l) p[l] = std::complex<T>(re[i * L + l], im[i * L + l]);
+
+  // The last log2 R stages (spans n/R … n/2) go with the scatter, R = n/256 within 4 … 16, so
+  // that every stage before them has a span below 256 and runs chunk by chunk in L1.
+  const int groups = std::clamp(n / kChunk, 4, 16);
+  const int last_middle = n / groups / 2;
+  // Middle stages, spans 4 … last_middle: those that fit a chunk while it sits in L1, then
+  // (only for n > 4096) the rest over the whole scratch.
+  int local_last = 2;
+  while (2 * local_last <= last_middle && 4 * local_last <= kChunk) local_last *= 2;
+  if (local_last >= 4) {
+    const int chunk = std::min(n, kChunk);
+    for (int c = 0; c < n; c += chunk) stages(x, c, c + chunk, 4, local_last, wr, wi);
+  }
+  if (2 * local_last <= last_middle) stages(x, 0, n, 2 * local_last, last_middle, wr, wi);
+
+  switch (groups) {
+    case 4: return scatter_last<T, 4>(io, x, n, wr, wi);
+    case 8: return scatter_last<T, 8>(io, x, n, wr, wi);
+    default: return scatter_last<T, 16>(io, x, n, wr, wi);
   }
 }
 
 template <typename T>
 class Radix2Engine final : public detail::ComplexEngine<T> {
  public:
-  static constexpr int kLanes = 64 / sizeof(T);  // one AVX-512 register of reals
+  static constexpr int kL = kLanes<T>;
 
   Radix2Engine(int nx, int ny, int threads) : x_(nx), y_(ny), threads_(threads) {}
 
   // `rows` rows of length nx from src to dst (may alias).
   void rows(const std::complex<T>* src, std::complex<T>* dst, int rows, bool inverse) const {
-    const int nx = x_.n;
-    const int blocks = rows / kLanes;
+    const std::size_t nx = x_.n;
+    const int blocks = rows / kL;
 #pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1)
     for (int b = 0; b < blocks; ++b) {
-      const std::size_t offset = std::size_t(b) * kLanes * nx;
-      row_block<T, kLanes>(src + offset, dst + offset, x_, inverse);
+      const std::size_t offset = std::size_t(b) * kL * nx;
+      transform_block<T>(RowsIO<T>{src + offset, dst + offset, nx}, x_, inverse);
     }
-    for (int r = blocks * kLanes; r < rows; ++r) {
-      row_block<T, 1>(src + std::size_t(r) * nx, dst + std::size_t(r) * nx, x_, inverse);
+    if (const int left = rows - blocks * kL; left > 0) {
+      const std::size_t offset = std::size_t(blocks) * kL * nx;
+      transform_block<T>(StridedIO<T>{src + offset, dst + offset, 1, std::ptrdiff_t(nx), left}, x_,
+                         inverse);
     }
   }
 
   void columns(std::complex<T>* data, bool inverse) const {
     const int nx = x_.n;
-    const int blocks = nx / kLanes;
+    const int blocks = nx / kL;
 #pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1)
-    for (int b = 0; b < blocks; ++b) column_block<T, kLanes>(data + b * kLanes, nx, y_, inverse);
-    for (int c = blocks * kLanes; c < nx; ++c) column_block<T, 1>(data + c, nx, y_, inverse);
+    for (int b = 0; b < blocks; ++b) {
+      transform_block<T>(ColumnsIO<T>{data + b * kL, std::size_t(nx), y_.n}, y_, inverse);
+    }
+    if (const int left = nx - blocks * kL; left > 0) {
+      std::complex<T>* p = data + blocks * kL;
+      transform_block<T>(StridedIO<T>{p, p, nx, 1, left}, y_, inverse);
+    }
   }
 
   void c2c(const std::complex<T>* in, std::complex<T>* out, Direction d) const override {
