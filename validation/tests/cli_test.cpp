@@ -1,6 +1,8 @@
 // Golden behaviour of the `swell` command: what it prints and writes for good input, and exit
 // code 2 with a message naming the problem for bad input (DESIGN §5b, docs/conventions.md).
 #include <gtest/gtest.h>
+
+#include "cli_support.hpp"
 #include <sys/wait.h>
 
 #include <array>
@@ -17,21 +19,8 @@
 
 namespace {
 
-struct Run {
-  int exit_code;
-  std::string output;  // stdout and stderr together
-};
-
-Run swell(const std::string& arguments) {
-  const std::string command = std::string(SWELL_BINARY) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  std::string output;
-  std::array<char, 4096> buffer;
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using swell::test::Run;
+using swell::test::swell;
 
 // Bretschneider written out here, independently of reference/.
 double bretschneider(double hs, double tp, double omega) {

@@ -2,6 +2,8 @@
 // (an impulse's spectrum, inverse ∘ forward = N, r2c = the first nx/2+1 columns of c2c, c2r ∘ r2c
 // = N), across backends, and exit code 2 with a named problem for bad input (DESIGN §5b).
 #include <gtest/gtest.h>
+
+#include "cli_support.hpp"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -29,21 +31,8 @@ using Dtype = NpyArray::Dtype;
 using cd = std::complex<double>;
 using cf = std::complex<float>;
 
-struct Run {
-  int exit_code;
-  std::string output;  // stdout and stderr together
-};
-
-Run swell(const std::string& arguments) {
-  const std::string command = std::string(SWELL_BINARY) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  std::string output;
-  std::array<char, 4096> buffer;
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using swell::test::Run;
+using swell::test::swell;
 
 bool contains(const std::string& text, const std::string& fragment) {
   return text.find(fragment) != std::string::npos;
