@@ -142,69 +142,84 @@ testing::AssertionResult impulse_response_holds(const Transform<T>& f, const Set
   return detail::verdict("impulse response", worst, s);
 }
 
-// Shifting the input by one sample along an axis multiplies bin k by e^(sign·2πi k/N).
-template <typename T>
-testing::AssertionResult time_shift_holds(const Transform<T>& f, const Setup& s) {
+namespace detail {
+
+// Worst relative error, over each axis and `s.trials` random inputs x, between T(change(x)) and
+// predicted(T(x)): the shape shared by the time- and frequency-shift invariants.
+template <typename T, typename Change, typename Predict>
+long double worst_over_axes(const Transform<T>& f, const Setup& s, Change change, Predict predict) {
   std::mt19937_64 engine(s.seed);
   const std::size_t n = std::size_t(s.nx) * s.ny;
   long double worst = 0;
   for (int axis = 0; axis < (s.ny > 1 ? 2 : 1); ++axis) {
     for (int trial = 0; trial < s.trials; ++trial) {
-      const auto x = detail::random_vector<T>(n, engine);
-      std::vector<Complex<T>> shifted(n);
-      for (int j = 0; j < s.ny; ++j) {
-        for (int i = 0; i < s.nx; ++i) {
-          const int si = axis == 0 ? (i + s.nx - 1) % s.nx : i;
-          const int sj = axis == 1 ? (j + s.ny - 1) % s.ny : j;
-          shifted[std::size_t(j) * s.nx + i] = x[std::size_t(sj) * s.nx + si];
-        }
-      }
-      const auto tx = detail::apply(f, x), tshift = detail::apply(f, shifted);
-      std::vector<std::complex<long double>> expected(n);
-      for (int ky = 0; ky < s.ny; ++ky) {
-        for (int kx = 0; kx < s.nx; ++kx) {
-          const auto k = std::size_t(ky) * s.nx + kx;
-          const auto phase = axis == 0 ? detail::root(s.sign, kx, s.nx) : detail::root(s.sign, ky, s.ny);
-          expected[k] = phase * std::complex<long double>(tx[k].real(), tx[k].imag());
-        }
-      }
-      worst = std::max(worst, detail::relative_l2(tshift, expected));
+      const auto x = random_vector<T>(n, engine);
+      const auto tx = detail::apply(f, x), tchanged = detail::apply(f, change(x, axis));
+      worst = std::max(worst, relative_l2(tchanged, predict(tx, axis)));
     }
   }
-  return detail::verdict("time shift", worst, s);
+  return worst;
+}
+
+}  // namespace detail
+
+// Shifting the input by one sample along an axis multiplies bin k by e^(sign·2πi k/N).
+template <typename T>
+testing::AssertionResult time_shift_holds(const Transform<T>& f, const Setup& s) {
+  const std::size_t n = std::size_t(s.nx) * s.ny;
+  auto shift = [&](const std::vector<Complex<T>>& x, int axis) {
+    std::vector<Complex<T>> shifted(n);
+    for (int j = 0; j < s.ny; ++j) {
+      for (int i = 0; i < s.nx; ++i) {
+        const int si = axis == 0 ? (i + s.nx - 1) % s.nx : i;
+        const int sj = axis == 1 ? (j + s.ny - 1) % s.ny : j;
+        shifted[std::size_t(j) * s.nx + i] = x[std::size_t(sj) * s.nx + si];
+      }
+    }
+    return shifted;
+  };
+  auto rotate_phases = [&](const std::vector<Complex<T>>& tx, int axis) {
+    std::vector<std::complex<long double>> expected(n);
+    for (int ky = 0; ky < s.ny; ++ky) {
+      for (int kx = 0; kx < s.nx; ++kx) {
+        const auto k = std::size_t(ky) * s.nx + kx;
+        const auto phase = axis == 0 ? detail::root(s.sign, kx, s.nx) : detail::root(s.sign, ky, s.ny);
+        expected[k] = phase * std::complex<long double>(tx[k].real(), tx[k].imag());
+      }
+    }
+    return expected;
+  };
+  return detail::verdict("time shift", detail::worst_over_axes<T>(f, s, shift, rotate_phases), s);
 }
 
 // Multiplying the input by e^(sign·2πi n/N) along an axis moves bin k + 1 to bin k.
 template <typename T>
 testing::AssertionResult frequency_shift_holds(const Transform<T>& f, const Setup& s) {
-  std::mt19937_64 engine(s.seed);
   const std::size_t n = std::size_t(s.nx) * s.ny;
-  long double worst = 0;
-  for (int axis = 0; axis < (s.ny > 1 ? 2 : 1); ++axis) {
-    for (int trial = 0; trial < s.trials; ++trial) {
-      const auto x = detail::random_vector<T>(n, engine);
-      std::vector<Complex<T>> modulated(n);
-      for (int j = 0; j < s.ny; ++j) {
-        for (int i = 0; i < s.nx; ++i) {
-          const auto k = std::size_t(j) * s.nx + i;
-          const auto phase = axis == 0 ? detail::root(s.sign, i, s.nx) : detail::root(s.sign, j, s.ny);
-          const auto z = std::complex<long double>(x[k].real(), x[k].imag()) * phase;
-          modulated[k] = Complex<T>(T(z.real()), T(z.imag()));
-        }
+  auto modulate = [&](const std::vector<Complex<T>>& x, int axis) {
+    std::vector<Complex<T>> modulated(n);
+    for (int j = 0; j < s.ny; ++j) {
+      for (int i = 0; i < s.nx; ++i) {
+        const auto k = std::size_t(j) * s.nx + i;
+        const auto phase = axis == 0 ? detail::root(s.sign, i, s.nx) : detail::root(s.sign, j, s.ny);
+        const auto z = std::complex<long double>(x[k].real(), x[k].imag()) * phase;
+        modulated[k] = Complex<T>(T(z.real()), T(z.imag()));
       }
-      const auto tx = detail::apply(f, x), tmod = detail::apply(f, modulated);
-      std::vector<std::complex<long double>> expected(n);
-      for (int ky = 0; ky < s.ny; ++ky) {
-        for (int kx = 0; kx < s.nx; ++kx) {
-          const int sx = axis == 0 ? (kx + 1) % s.nx : kx, sy = axis == 1 ? (ky + 1) % s.ny : ky;
-          const auto from = std::size_t(sy) * s.nx + sx;
-          expected[std::size_t(ky) * s.nx + kx] = {tx[from].real(), tx[from].imag()};
-        }
-      }
-      worst = std::max(worst, detail::relative_l2(tmod, expected));
     }
-  }
-  return detail::verdict("frequency shift", worst, s);
+    return modulated;
+  };
+  auto move_bins = [&](const std::vector<Complex<T>>& tx, int axis) {
+    std::vector<std::complex<long double>> expected(n);
+    for (int ky = 0; ky < s.ny; ++ky) {
+      for (int kx = 0; kx < s.nx; ++kx) {
+        const int sx = axis == 0 ? (kx + 1) % s.nx : kx, sy = axis == 1 ? (ky + 1) % s.ny : ky;
+        const auto from = std::size_t(sy) * s.nx + sx;
+        expected[std::size_t(ky) * s.nx + kx] = {tx[from].real(), tx[from].imag()};
+      }
+    }
+    return expected;
+  };
+  return detail::verdict("frequency shift", detail::worst_over_axes<T>(f, s, modulate, move_bins), s);
 }
 
 // Σ|X|² = N Σ|x|² (relative difference of the two sums).
