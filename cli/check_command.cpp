@@ -2,7 +2,6 @@
 // Runs swell's validations, prints tables and writes <report-dir>/check_<what>.{json,md}.
 #include <fmt/format.h>
 
-#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -62,17 +61,13 @@ int run_check(const CheckOptions& o) {
     markdown += "\n## Transform accuracy against the long-double oracle\n\n```\n" +
                 validation::render_transform_table(transforms) + "```\n";
   }
-  std::filesystem::create_directories(o.report_dir);
-  const std::filesystem::path stem = std::filesystem::path(o.report_dir) / ("check_" + o.what);
-  std::ofstream(stem.string() + ".json") << document.dump(2) << "\n";
-  std::ofstream md(stem.string() + ".md");
-  md << markdown;
-  if (!md) throw InvalidInput("cannot write reports to '" + o.report_dir + "'");
+  validation::write_report(o.report_dir, "check_" + o.what, document, markdown);
+  const std::string stem = (std::filesystem::path(o.report_dir) / ("check_" + o.what)).string();
   if (!o.json.empty()) write_json(o.json, document);
   if (o.json != "-") {
     if (!checks.empty()) std::cout << validation::render_table(checks);
     if (!transforms.empty()) std::cout << "\n" << validation::render_transform_table(transforms);
-    std::cout << fmt::format("{}\nreport: {}.{{json,md}}\n", passed ? "PASS" : "FAIL", stem.string());
+    std::cout << fmt::format("{}\nreport: {}.{{json,md}}\n", passed ? "PASS" : "FAIL", stem);
   }
   return passed ? 0 : 1;
 }

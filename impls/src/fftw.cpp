@@ -284,9 +284,6 @@ class FftwBackend final : public Backend {
     return nullptr;
   }
 
- protected:
-  std::string version_info() const override { return fftw_version; }
-
  private:
   BackendOptions options_;
 };

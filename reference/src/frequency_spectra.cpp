@@ -88,9 +88,7 @@ std::shared_ptr<const Jonswap> Jonswap::from_alpha(double alpha, double omega_p,
   require_positive(gravity, "gravity", "m/s²");
   validate_shape(shape);
   auto parameters = std::vector<Parameter>{{"alpha", alpha, ""}, {"omega_p", omega_p, "rad/s"}};
-  for (auto& p : shape_parameters(shape)) parameters.push_back(p);
-  return std::shared_ptr<const Jonswap>(
-      new Jonswap(alpha, omega_p, shape, gravity, std::move(parameters)));
+  return assemble(alpha, omega_p, shape, gravity, std::move(parameters));
 }
 
 std::shared_ptr<const Jonswap> Jonswap::from_wind_fetch(double u10, double fetch, Shape shape,
@@ -106,9 +104,7 @@ std::shared_ptr<const Jonswap> Jonswap::from_wind_fetch(double u10, double fetch
                                            {"fetch", fetch, "m"},
                                            {"alpha", alpha, ""},
                                            {"omega_p", omega_p, "rad/s"}};
-  for (auto& p : shape_parameters(shape)) parameters.push_back(p);
-  return std::shared_ptr<const Jonswap>(
-      new Jonswap(alpha, omega_p, shape, gravity, std::move(parameters)));
+  return assemble(alpha, omega_p, shape, gravity, std::move(parameters));
 }
 
 std::shared_ptr<const Jonswap> Jonswap::from_hs_tp(double hs, double tp, Shape shape,
@@ -131,8 +127,14 @@ std::shared_ptr<const Jonswap> Jonswap::from_hs_tp(double hs, double tp, Shape s
     alpha = hs * hs / 16.0 / spectral_moment(unit, 0);
   }
   auto parameters = std::vector<Parameter>{{"hs", hs, "m"}, {"tp", tp, "s"}};
-  for (auto& p : shape_parameters(shape)) parameters.push_back(p);
   parameters.push_back({"alpha", alpha, ""});
+  return assemble(alpha, omega_p, shape, gravity, std::move(parameters));
+}
+
+// The parameters a factory was given (and α, ωp it derived), then the peak shape's.
+std::shared_ptr<const Jonswap> Jonswap::assemble(double alpha, double omega_p, Shape shape,
+                                                 double gravity, std::vector<Parameter> parameters) {
+  for (auto& p : shape_parameters(shape)) parameters.push_back(p);
   return std::shared_ptr<const Jonswap>(
       new Jonswap(alpha, omega_p, shape, gravity, std::move(parameters)));
 }

@@ -1,5 +1,7 @@
 #include "swell/validation/report.hpp"
 
+#include "swell/reference/errors.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -97,15 +99,16 @@ nlohmann::json to_json(const std::vector<CheckResult>& results) {
 }
 
 void write_report(const std::filesystem::path& dir, const std::string& stem,
-                  const std::vector<CheckResult>& results, const std::string& title) {
-  std::filesystem::create_directories(dir);
+                  const nlohmann::json& document, const std::string& markdown) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
   auto write = [&](const std::filesystem::path& path, const std::string& text) {
     std::ofstream file(path);
     file << text;
-    if (!file) throw std::runtime_error("cannot write " + path.string());
+    if (!file) throw InvalidInput("cannot write report " + path.string());
   };
-  write(dir / (stem + ".json"), to_json(results).dump(2) + "\n");
-  write(dir / (stem + ".md"), render_markdown(results, title));
+  write(dir / (stem + ".json"), document.dump(2) + "\n");
+  write(dir / (stem + ".md"), markdown);
 }
 
 }  // namespace swell::validation

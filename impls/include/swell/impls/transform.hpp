@@ -125,10 +125,6 @@ class Backend {
   virtual std::unique_ptr<Buffer> allocate(std::size_t bytes) const;
   // Checks the rules common to every backend and this backend's capabilities.
   void validate(const TransformSpec& spec) const;
-  std::string version() const { return version_info(); }
-
- protected:
-  virtual std::string version_info() const { return "swell " + std::string("0.1.0"); }
 };
 
 // ------------------------------------------------------------------ registry

@@ -97,6 +97,8 @@ class Jonswap final : public FrequencySpectrum {
  private:
   Jonswap(double alpha, double omega_p, Shape shape, double gravity,
           std::vector<Parameter> parameters);
+  static std::shared_ptr<const Jonswap> assemble(double alpha, double omega_p, Shape shape,
+                                                 double gravity, std::vector<Parameter> parameters);
   double alpha_, omega_p_;
   Shape shape_;
   double gravity_;

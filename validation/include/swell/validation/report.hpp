@@ -15,9 +15,10 @@ std::string render_markdown(const std::vector<CheckResult>& results, const std::
 //  "reason"}], "passed": n, "failed": n}. Non-finite numbers become null.
 nlohmann::json to_json(const std::vector<CheckResult>& results);
 
-// Writes <dir>/<stem>.json and <dir>/<stem>.md, creating dir; throws on I/O failure.
+// Writes <dir>/<stem>.json and <dir>/<stem>.md, creating dir; throws swell::InvalidInput
+// naming the path when it cannot.
 void write_report(const std::filesystem::path& dir, const std::string& stem,
-                  const std::vector<CheckResult>& results, const std::string& title);
+                  const nlohmann::json& document, const std::string& markdown);
 
 // A JSON number, or null when x is NaN or ±∞ (JSON has no such numbers).
 nlohmann::json json_number(double x);
