@@ -14,6 +14,8 @@ using Action = std::function<int()>;
 Action add_spectrum_command(CLI::App& app);
 Action add_check_command(CLI::App& app);
 Action add_fft_command(CLI::App& app);
+Action add_synth_command(CLI::App& app);
+Action add_fit_command(CLI::App& app);
 
 // Writes JSON to FILE, or to standard output for "-".
 void write_json(const std::string& destination, const nlohmann::json& document);

@@ -35,11 +35,15 @@ int main(int argc, char** argv) {
   actions["check"] = swell::cli::add_check_command(*check);
   auto* fft = app.add_subcommand("fft", "transform one .npy array with one backend");
   actions["fft"] = swell::cli::add_fft_command(*fft);
+  auto* synth = app.add_subcommand("synth", "synthesize ocean frames and write them with their case");
+  actions["synth"] = swell::cli::add_synth_command(*synth);
+  auto* fit = app.add_subcommand("fit", "fit JONSWAP parameters, with 95 % intervals, to frames");
+  actions["fit"] = swell::cli::add_fit_command(*fit);
 
   // CLI11 says only "A subcommand is required" for a misspelt one; name it instead.
   if (argc > 1 && argv[1][0] != '-' && !actions.count(argv[1])) {
     std::cerr << "swell: error: unknown subcommand '" << argv[1]
-              << "'; valid: spectrum, check, fft (run 'swell --help' for usage)\n";
+              << "'; valid: spectrum, check, fft, synth, fit (run 'swell --help' for usage)\n";
     return 2;
   }
   try {

@@ -90,6 +90,8 @@ nlohmann::json to_json(const std::vector<CheckResult>& results) {
                       {"expected", json_number(r.expected)},
                       {"tolerance", json_number(r.tolerance)},
                       {"criterion", r.criterion},
+                      {"p_value", json_number(r.p_value)},
+                      {"alpha", json_number(r.alpha)},
                       {"pass", r.passed},
                       {"reason", r.reason}});
   }

@@ -2,6 +2,7 @@
 // A check returns a value, not a printout: what was checked, on what, the measured and expected
 // numbers, the criterion, the verdict and a one-line reason. Text, JSON and Markdown are
 // renderings of it (report.hpp).
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,10 @@ struct CheckResult {
   std::string criterion;  // how measured is judged: "|rel err| ≤ 1e-12"
   bool passed = false;
   std::string reason;     // one line: why it passed or failed, in the user's terms
+  // Statistical checks: the p-value of the measurement under the hypothesis that the surface is
+  // right, and the false-alarm rate α it was judged at (passed ⇔ p ≥ α). NaN for exact checks.
+  double p_value = std::numeric_limits<double>::quiet_NaN();
+  double alpha = std::numeric_limits<double>::quiet_NaN();
 };
 
 // |measured − expected| ≤ tolerance · |expected|.

@@ -1,0 +1,71 @@
+#pragma once
+// The grid synthesizer (Tessendorf's method) following docs/conventions.md §Amplitudes to the
+// letter, over any registered transform backend, in fp32 or fp64:
+//
+//   h̃0(k) = (ξ1 + i ξ2)/√2 · √(Ψ(k) Δkx Δky / 2)       ξ from wave_noise(seed, n, m)
+//   h̃(k, t) = h̃0(k) e^(−iωt) + conj(h̃0(−k)) e^(+iωt)
+//   field(x, t) = Σk multiplier(k) h̃(k, t) e^(ik·x)     (one inverse transform per field)
+//
+// k = 0 and the Nyquist row and column carry zero. The eight real fields the six outputs need
+// (h, ∂h/∂x, ∂h/∂y, λDx, λDy and the three λ∂D/∂x terms of J) are computed either as four
+// complex transforms, two real fields packed per transform (a + ib), or as eight c2r transforms;
+// docs/synthesis.md records which is faster on which backend.
+#include <complex>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "swell/impls/transform.hpp"
+#include "swell/reference/fields.hpp"
+#include "swell/reference/ocean_case.hpp"
+
+namespace swell::impls {
+
+enum class Packing {
+  complex_pairs,  // 4 c2c inverse transforms, two real fields in each
+  real,           // 8 c2r inverse transforms
+  automatic,      // the faster for the backend (complex_pairs unless the backend lacks c2c)
+};
+std::string to_string(Packing packing);
+Packing packing_from_string(const std::string& name);
+
+// The initial amplitude h̃0 at signed wave-number indices (n, m) of a case — the definition,
+// in double precision; 0 where the grid carries no energy.
+std::complex<double> initial_amplitude(const reference::OceanCase& ocean_case, int n, int m);
+
+struct SynthesizerOptions {
+  std::string backend = "fftw";  // any registered backend, with options ("fftw:threads=2")
+  Precision precision = Precision::f32;
+  Packing packing = Packing::automatic;
+  int threads = 1;               // for the spectrum assembly (OpenMP)
+};
+
+class Synthesizer {
+ public:
+  Synthesizer(reference::OceanCase ocean_case, SynthesizerOptions options = {});
+  ~Synthesizer();
+  Synthesizer(const Synthesizer&) = delete;
+  Synthesizer& operator=(const Synthesizer&) = delete;
+
+  const reference::OceanCase& ocean_case() const;
+  const SynthesizerOptions& options() const;
+  Packing packing() const;  // the packing actually used
+  // The transforms of one frame (for benchmarks: frame time over bare transform time).
+  std::vector<TransformSpec> transforms_per_frame() const;
+
+  // All six fields at time t into `fields`: 6 consecutive arrays of nx·ny reals of the
+  // synthesizer's precision (float or double), in reference::kAllFields order.
+  void evaluate(double t, std::span<std::byte> fields) const;
+  std::size_t frame_bytes() const;  // bytes `fields` must hold
+
+  // The same, converted to double: one frame at time t, and the case's frames.
+  reference::FieldFrame frame(double t) const;
+  reference::FrameSequence frames() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace swell::impls

@@ -1,0 +1,51 @@
+#pragma once
+// The fields of a surface and a sequence of sampled frames: what a synthesizer produces, what
+// files hold and what the checks consume (docs/conventions.md §Derived fields).
+//
+//   height   h                         m
+//   slope_x  ∂h/∂x  ↔ i kx h̃           1
+//   slope_y  ∂h/∂y  ↔ i ky h̃           1
+//   disp_x   λ Dx,  Dx ↔ i kx/|k| h̃    m   (the displacement actually applied: x + λD)
+//   disp_y   λ Dy,  Dy ↔ i ky/|k| h̃    m
+//   jacobian J = (1 + λ ∂Dx/∂x)(1 + λ ∂Dy/∂y) − λ² (∂Dx/∂y)²     1
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "swell/reference/grid.hpp"
+
+namespace swell::reference {
+
+enum class Field { height, slope_x, slope_y, disp_x, disp_y, jacobian };
+inline constexpr std::array<Field, 6> kAllFields = {Field::height, Field::slope_x,
+                                                    Field::slope_y, Field::disp_x,
+                                                    Field::disp_y, Field::jacobian};
+
+std::string field_name(Field field);     // "height", "slope_x", …, "jacobian" (case files)
+std::string channel_name(Field field);   // EXR channel: "h", "sx", "sy", "dx", "dy", "J"
+std::string field_unit(Field field);     // "m" or "1"
+Field field_from_name(const std::string& name);  // either spelling; throws InvalidInput
+
+// One frame: the fields at one time, each nx·ny values, row-major with x fastest.
+struct FieldFrame {
+  double time = 0;  // s
+  std::map<Field, std::vector<double>> fields;
+  // Imaginary parts, present only when an engine handed over complex fields (e.g. complex .npy):
+  // the Hermitian check measures them.
+  std::map<Field, std::vector<double>> imaginary;
+};
+
+struct FrameSequence {
+  Grid grid;
+  std::vector<FieldFrame> frames;
+  // Unit roundoff of the numbers as stored (2⁻²⁴ for float32, 2⁻⁵³ for float64, 2⁻¹¹ for
+  // half): the floor below which the checks cannot resolve anything.
+  double unit_roundoff = 0x1p-53;
+
+  bool has(Field field) const;  // present in every frame
+  const std::vector<double>& field(int frame, Field field) const;  // throws InvalidInput
+};
+
+}  // namespace swell::reference

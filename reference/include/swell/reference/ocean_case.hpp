@@ -1,0 +1,51 @@
+#pragma once
+// An ocean case: everything that fixes a synthesized surface and everything a check needs to
+// judge one (docs/conventions.md, docs/case_files.md). It is what a case file (case.toml)
+// holds: grid, frame times, physics, spectrum, spreading, synthesis settings and seed.
+#include <cstdint>
+#include <string>
+
+#include "swell/reference/directional.hpp"
+#include "swell/reference/dispersion.hpp"
+#include "swell/reference/grid.hpp"
+#include "swell/reference/model_factory.hpp"
+
+namespace swell::reference {
+
+struct OceanCase {
+  Grid grid;
+
+  // Frame f is at time t0 + f·dt (s).
+  double t0 = 0;
+  double dt = 0;
+  int frames = 1;
+
+  double gravity = kStandardGravity;  // m/s²
+  double depth = kInfiniteDepth;      // m
+
+  // Frequency spectrum by name and parameters (model_factory.hpp vocabulary), without the
+  // common parameters gravity, depth and wind_dir, which the case holds once for all models.
+  ModelSpec spectrum;
+  // Spreading model; empty model name for phillips, which carries its own directionality.
+  ModelSpec spreading;
+  double wind_dir_deg = 0;  // θw, degrees counter-clockwise from +x, direction of travel
+
+  double choppiness = 1;   // λ: stored displacement is λD (conventions §Derived fields)
+  double loop_period = 0;  // s; 0 = none, else ω is quantized down to multiples of 2π/T
+  std::uint64_t seed = 0;
+
+  // Checks it and throws InvalidInput naming the first thing wrong.
+  void validate() const;
+
+  double time(int frame) const { return t0 + frame * dt; }
+  // ω(|k|) of the case: its dispersion relation, quantized by the loop period if one is set.
+  double omega(double k) const;
+  Dispersion dispersion() const;
+  // Ψ(k) of the case (with gravity, depth and wind direction applied).
+  DirectionalSpectrumPtr directional_spectrum() const;
+  // The spectrum spec with gravity, depth and wind_dir filled in, as model_factory takes it.
+  ModelSpec full_spectrum_spec() const;
+  std::string describe() const;  // "jonswap hs=3 tp=8 gamma=3.3 + cos2s s=10, 256×256 over 200×200 m"
+};
+
+}  // namespace swell::reference

@@ -1,0 +1,33 @@
+#pragma once
+// The spectral view of sampled frames that the checks and the fit share
+// (docs/conventions.md §Transforms): ĥ(k) = (1/(Nx Ny)) Σx h(x) e^(−ik·x) in FFT order, the
+// periodogram I(k) = |ĥ(k)|² (Σ I = mean h²), and what a right surface makes of it:
+//   E I(k) = μ(k) = ½ (Ψ(k) + Ψ(−k)) Δkx Δky   for k carrying energy, 0 elsewhere,
+// with, in one realization, I(k) exponentially distributed with mean μ(k) and independent
+// over a half plane of k (I(−k) = I(k)).
+#include <complex>
+#include <vector>
+
+#include "swell/reference/directional.hpp"
+#include "swell/reference/grid.hpp"
+
+namespace swell::validation {
+
+// ĥ of a real field of grid.nx·grid.ny values (fp64 FFTW).
+std::vector<std::complex<double>> field_spectrum(const std::vector<double>& field,
+                                                 const reference::Grid& grid);
+// The inverse: Σk ĥ(k) e^(ik·x), real part (ĥ Hermitian up to rounding).
+std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
+                                        const reference::Grid& grid);
+
+// μ(k) over the grid, in FFT order.
+std::vector<double> expected_periodogram(const reference::DirectionalSpectrum& spectrum,
+                                         const reference::Grid& grid);
+// E|h̃0(k)|² = ½ Ψ(k) Δkx Δky: the mean power of the wave travelling along +k.
+std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,
+                                              const reference::Grid& grid);
+
+// True for the representative of each ±k pair carrying energy: exactly one of k, −k.
+bool in_half_plane(int n, int m);
+
+}  // namespace swell::validation
