@@ -1,1 +1,1069 @@
-// placeholder: being written
+#include "swell/validation/ocean_checks.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <complex>
+#include <functional>
+#include <map>
+#include <numbers>
+#include <numeric>
+
+#include "swell/impls/transform.hpp"
+#include "swell/reference/errors.hpp"
+#include "swell/validation/periodogram.hpp"
+#include "swell/validation/statistics.hpp"
+
+namespace swell::validation {
+namespace {
+
+using reference::Field;
+using reference::FrameSequence;
+using reference::Grid;
+using reference::OceanCase;
+using Complex = std::complex<double>;
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDegree = 180.0 / kPi;
+constexpr double kFp64Roundoff = 0x1p-53;
+
+double mean_square(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v) sum += x * x;
+  return sum / double(v.size());
+}
+
+// A statistical result: passed ⇔ p ≥ α.
+CheckResult statistical(std::string check, std::string subject, double measured, double expected,
+                        double p_value, double alpha, std::string criterion, std::string reason) {
+  CheckResult r;
+  r.check = std::move(check);
+  r.subject = std::move(subject);
+  r.measured = measured;
+  r.expected = expected;
+  r.tolerance = alpha;
+  r.criterion = std::move(criterion);
+  r.p_value = p_value;
+  r.alpha = alpha;
+  r.passed = p_value >= alpha;  // false for NaN
+  r.reason = std::move(reason);
+  return r;
+}
+
+// An exact result: passed ⇔ error ≤ bound.
+CheckResult bounded(std::string check, std::string subject, double error, double bound,
+                    std::string criterion, std::string reason) {
+  CheckResult r;
+  r.check = std::move(check);
+  r.subject = std::move(subject);
+  r.measured = error;
+  r.expected = 0;
+  r.tolerance = bound;
+  r.criterion = std::move(criterion);
+  r.passed = error <= bound;
+  r.reason = std::move(reason);
+  return r;
+}
+
+std::string verdict(bool passed) { return passed ? "" : " — FAILED"; }
+
+// One energy-carrying wave vector k of the half plane (its partner −k is implied).
+struct Wave {
+  std::size_t index = 0, minus_index = 0;  // positions of k and −k in FFT order
+  double kx = 0, ky = 0, k = 0, omega = 0, theta = 0;
+  double mu = 0;         // E I(k) = τ(k) + τ(−k)
+  double tau_plus = 0;   // E|a|²: power travelling along +k
+  double tau_minus = 0;  // E|b|²: power travelling along −k
+};
+
+// The travelling-wave amplitudes of one wave vector fitted over the frames:
+// h̃(k, t) ≈ a e^(−iωt) + b e^(+iωt).
+struct WaveFit {
+  const Wave* wave = nullptr;
+  Complex a, b;
+  double energy = 0, residual = 0;  // Σf |h̃|², Σf |h̃ − fit|²
+};
+
+// Least squares of a e^(−iωt) + b e^(+iωt) to samples y_f at times t_f. Returns false when
+// the two columns are nearly parallel (2ω Δt ≈ 0 mod 2π), so a and b are not identifiable.
+bool fit_two_waves(double omega, const std::vector<double>& times, const std::vector<Complex>& y,
+                   Complex& a, Complex& b, double& residual) {
+  const double frames = double(times.size());
+  Complex s = 0, r1 = 0, r2 = 0;
+  for (std::size_t f = 0; f < times.size(); ++f) {
+    const Complex e = std::polar(1.0, -omega * times[f]);
+    s += std::conj(e) * std::conj(e);
+    r1 += std::conj(e) * y[f];
+    r2 += e * y[f];
+  }
+  // Normal equations [[F, S], [S*, F]] (a, b) = (r1, r2); eigenvalues F ± |S|.
+  if (frames - std::abs(s) < 0.05 * frames) return false;
+  const double det = frames * frames - std::norm(s);
+  a = (frames * r1 - s * r2) / det;
+  b = (frames * r2 - std::conj(s) * r1) / det;
+  residual = 0;
+  for (std::size_t f = 0; f < times.size(); ++f) {
+    const Complex e = std::polar(1.0, -omega * times[f]);
+    residual += std::norm(y[f] - a * e - b * std::conj(e));
+  }
+  return true;
+}
+
+class Analysis {
+ public:
+  Analysis(const OceanCase& ocean_case, const FrameSequence& frames,
+           const OceanCheckOptions& options)
+      : c_(ocean_case), frames_(frames), options_(options), grid_(ocean_case.grid) {
+    const Grid& g = frames.grid;
+    if (g.nx != grid_.nx || g.ny != grid_.ny ||
+        std::abs(g.lx - grid_.lx) > 1e-9 * grid_.lx || std::abs(g.ly - grid_.ly) > 1e-9 * grid_.ly) {
+      throw InvalidInput(fmt::format("frames are {}×{} over {:g}×{:g} m but the case says "
+                                     "{}×{} over {:g}×{:g} m",
+                                     g.nx, g.ny, g.lx, g.ly, grid_.nx, grid_.ny, grid_.lx,
+                                     grid_.ly));
+    }
+    if (frames.frames.empty()) throw InvalidInput("no frames to check");
+    if (!frames.has(Field::height)) {
+      throw InvalidInput("the frames have no height field: every ocean check needs it");
+    }
+    require(options.alpha > 0 && options.alpha < 1, "alpha", "in (0, 1)", options.alpha);
+    count_ = std::size_t(grid_.nx) * grid_.ny;
+    log2n_ = std::max(1.0, std::log2(double(count_)));
+    u_ = std::max(frames.unit_roundoff, kFp64Roundoff);
+    for (const auto& frame : frames.frames) times_.push_back(frame.time);
+
+    const auto spectrum = c_.directional_spectrum();
+    mu_ = expected_periodogram(*spectrum, grid_);
+    tau_ = expected_travelling_power(*spectrum, grid_);
+    spectrum0_ = field_spectrum(frames.field(0, Field::height), grid_);
+    mean_square0_ = mean_square(frames.field(0, Field::height));
+
+    const double expected_total = std::accumulate(mu_.begin(), mu_.end(), 0.0);
+    if (!(expected_total > 0)) {
+      throw InvalidInput("the case's spectrum puts no energy on this grid (" + c_.describe() + ")");
+    }
+    if (options.free_scale) {
+      scale_ = mean_square0_ / expected_total;
+      if (!(scale_ > 0)) throw InvalidInput("free scale: the height field is identically zero");
+      for (double& v : mu_) v *= scale_;
+      for (double& v : tau_) v *= scale_;
+    }
+    max_mu_ = *std::max_element(mu_.begin(), mu_.end());
+    // Rounding of the stored numbers, white over the N wave vectors: at most u² mean(h²)/N per
+    // k. A wave vector is resolved when the model puts 10⁶ times that there, so rounding moves
+    // its periodogram by < 10⁻⁶ relative — far below any sampling effect the checks test.
+    floor_ = 1e6 * u_ * u_ * mean_square0_ / double(count_);
+
+    for (int j = 0; j < grid_.ny; ++j) {
+      const int m = Grid::signed_index(j, grid_.ny);
+      for (int i = 0; i < grid_.nx; ++i) {
+        const int n = Grid::signed_index(i, grid_.nx);
+        if (!grid_.carries_energy(n, m) || !in_half_plane(n, m)) continue;
+        const std::size_t e = std::size_t(j) * grid_.nx + i;
+        Wave w;
+        w.index = e;
+        w.minus_index = std::size_t((grid_.ny - j) % grid_.ny) * grid_.nx + (grid_.nx - i) % grid_.nx;
+        w.kx = n * grid_.dkx();
+        w.ky = m * grid_.dky();
+        w.k = std::hypot(w.kx, w.ky);
+        w.omega = c_.omega(w.k);
+        w.theta = std::atan2(w.ky, w.kx);
+        w.mu = mu_[e];
+        w.tau_plus = tau_[e];
+        w.tau_minus = tau_[w.minus_index];
+        all_half_plane_.push_back(w);
+        if (w.mu >= floor_ && w.mu > 0) resolved_.push_back(w);
+      }
+    }
+    if (resolved_.empty()) {
+      throw InvalidInput("no wave vector of the grid carries resolvable energy under the case's "
+                         "spectrum (" + c_.describe() + ")");
+    }
+  }
+
+  const OceanCase& ocean_case() const { return c_; }
+  const FrameSequence& frames() const { return frames_; }
+  const OceanCheckOptions& options() const { return options_; }
+  const Grid& grid() const { return grid_; }
+  std::size_t count() const { return count_; }
+  double log2n() const { return log2n_; }
+  double unit_roundoff() const { return u_; }
+  double scale() const { return scale_; }
+  const std::vector<double>& times() const { return times_; }
+  const std::vector<double>& mu() const { return mu_; }
+  const std::vector<Complex>& spectrum0() const { return spectrum0_; }
+  double periodogram0(std::size_t e) const { return std::norm(spectrum0_[e]); }
+  double mean_square0() const { return mean_square0_; }
+  double floor() const { return floor_; }
+  const std::vector<Wave>& waves() const { return resolved_; }
+  const std::vector<Wave>& half_plane() const { return all_half_plane_; }
+  std::string subject() const { return c_.describe(); }
+
+  // The height spectra of every frame at the resolved wave vectors, computed once.
+  const std::vector<std::vector<Complex>>& wave_series() const {
+    if (series_.empty()) {
+      series_.assign(resolved_.size(), std::vector<Complex>(times_.size()));
+      for (std::size_t f = 0; f < times_.size(); ++f) {
+        const auto spectrum = f == 0 ? spectrum0_
+                                     : field_spectrum(frames_.field(int(f), Field::height), grid_);
+        for (std::size_t w = 0; w < resolved_.size(); ++w) series_[w][f] = spectrum[resolved_[w].index];
+      }
+    }
+    return series_;
+  }
+
+  // a and b per resolved wave vector whose two waves are identifiable from the frame times.
+  const std::vector<WaveFit>& wave_fits() const {
+    if (!fits_computed_) {
+      fits_computed_ = true;
+      const auto& series = wave_series();
+      for (std::size_t w = 0; w < resolved_.size(); ++w) {
+        WaveFit fit;
+        fit.wave = &resolved_[w];
+        if (!fit_two_waves(resolved_[w].omega, times_, series[w], fit.a, fit.b, fit.residual)) continue;
+        for (const Complex& y : series[w]) fit.energy += std::norm(y);
+        fits_.push_back(fit);
+      }
+    }
+    return fits_;
+  }
+
+ private:
+  const OceanCase& c_;
+  const FrameSequence& frames_;
+  OceanCheckOptions options_;
+  Grid grid_;
+  std::size_t count_ = 0;
+  double log2n_ = 1, u_ = kFp64Roundoff, scale_ = 1, max_mu_ = 0, floor_ = 0, mean_square0_ = 0;
+  std::vector<double> times_, mu_, tau_;
+  std::vector<Complex> spectrum0_;
+  std::vector<Wave> resolved_, all_half_plane_;
+  mutable std::vector<std::vector<Complex>> series_;
+  mutable std::vector<WaveFit> fits_;
+  mutable bool fits_computed_ = false;
+};
+
+using Results = std::vector<CheckResult>;
+
+// ------------------------------------------------------------------ hermitian
+
+// A real field's spectrum is Hermitian to rounding whatever the engine did; what an engine can
+// get wrong shows in the imaginary part of a complex synthesis, when it hands that over. The
+// imaginary residue of a right synthesis is the transform's rounding, ≲ u log2 N of the field.
+Results check_hermitian(const Analysis& a, OceanCheckReport&) {
+  Results out;
+  double worst_residue = 0, worst_symmetry = 0;
+  std::string residue_where = "none given", symmetry_where;
+  bool any_imaginary = false;
+  for (std::size_t f = 0; f < a.frames().frames.size(); ++f) {
+    const auto& frame = a.frames().frames[f];
+    for (const auto& [field, values] : frame.fields) {
+      const auto imaginary = frame.imaginary.find(field);
+      if (imaginary != frame.imaginary.end()) {
+        any_imaginary = true;
+        const double residue =
+            std::sqrt(mean_square(imaginary->second) / std::max(mean_square(values), 1e-300));
+        if (residue >= worst_residue) {
+          worst_residue = residue;
+          residue_where = fmt::format("{} frame {}", reference::field_name(field), f);
+        }
+      }
+    }
+    if (f == 0 || f + 1 == a.frames().frames.size()) {
+      const auto& spectrum = f == 0 ? a.spectrum0()
+                                    : field_spectrum(a.frames().field(int(f), Field::height), a.grid());
+      double largest = 0, asymmetry = 0;
+      for (const Wave& w : a.half_plane()) {
+        largest = std::max(largest, std::abs(spectrum[w.index]));
+        asymmetry = std::max(asymmetry, std::abs(spectrum[w.index] - std::conj(spectrum[w.minus_index])));
+      }
+      const double relative = asymmetry / std::max(largest, 1e-300);
+      if (relative >= worst_symmetry) {
+        worst_symmetry = relative;
+        symmetry_where = fmt::format("height frame {}", f);
+      }
+    }
+  }
+  const double symmetry_bound = 16 * kFp64Roundoff * a.log2n();
+  out.push_back(bounded("hermitian.symmetry", a.subject(), worst_symmetry, symmetry_bound,
+                        fmt::format("max|ĥ(k) − conj ĥ(−k)| / max|ĥ| ≤ {:.1e}", symmetry_bound),
+                        fmt::format("height spectrum Hermitian to {:.1e} ({}){}", worst_symmetry,
+                                    symmetry_where, verdict(worst_symmetry <= symmetry_bound))));
+  if (any_imaginary) {
+    const double bound = 16 * a.unit_roundoff() * a.log2n();
+    const bool ok = worst_residue <= bound;
+    out.push_back(bounded(
+        "hermitian.imaginary_residue", a.subject(), worst_residue, bound,
+        fmt::format("rms(Im) / rms(Re) ≤ {:.1e}", bound),
+        ok ? fmt::format("imaginary residue {:.1e} of the field ({})", worst_residue, residue_where)
+           : fmt::format("imaginary residue {:.2g} of the field ({}): h̃(−k) is not conj(h̃(k)) — "
+                         "missing conjugate pairing",
+                         worst_residue, residue_where)));
+  }
+  return out;
+}
+
+// ------------------------------------------------------------------ parseval
+
+Results check_parseval(const Analysis& a, OceanCheckReport&) {
+  const auto backend = impls::make_backend(a.options().analysis_backend);
+  impls::TransformSpec spec;
+  spec.nx = a.grid().nx;
+  spec.ny = a.grid().ny;
+  spec.kind = impls::Kind::c2c;
+  spec.direction = impls::Direction::forward;
+  spec.precision = impls::Precision::f64;
+  const auto plan = backend->plan(spec);
+  double worst = 0;
+  std::vector<Complex> in(a.count()), out(a.count());
+  for (std::size_t f = 0; f < a.frames().frames.size(); ++f) {
+    const auto& h = a.frames().field(int(f), Field::height);
+    std::copy(h.begin(), h.end(), in.begin());
+    plan->execute(in.data(), out.data());
+    // Sums in long double, so that only the transform's rounding is measured.
+    long double spatial = 0, spectral = 0;
+    for (double x : h) spatial += (long double)x * x;
+    for (const Complex& v : out) spectral += std::norm(v);
+    spectral /= (long double)a.count();
+    worst = std::max(worst, double(std::abs(spatial - spectral) / std::max(spatial, 1e-300L)));
+  }
+  const double bound = 8 * kFp64Roundoff * a.log2n();
+  return {bounded("parseval", a.subject() + " via " + backend->name(), worst, bound,
+                  fmt::format("|Σh² − N Σ|ĥ|²| / Σh² ≤ {:.1e}", bound),
+                  fmt::format("Parseval holds to {:.1e} over {} frames{}", worst,
+                              a.frames().frames.size(), verdict(worst <= bound)))};
+}
+
+// ------------------------------------------------------------------ energy
+
+// mean h² = Σk I(k) = Σ over the half plane of 2 I(k), I(k) ~ μ(k) Exp(1) independent: a
+// weighted sum of exponentials, whose law the saddlepoint approximation gives.
+Results check_energy(const Analysis& a, OceanCheckReport& report) {
+  if (a.options().free_scale) {
+    report.skipped.push_back("energy: the case declares a free spectrum scale");
+    return {};
+  }
+  std::vector<double> weights;
+  for (const Wave& w : a.half_plane()) weights.push_back(2 * w.mu);
+  const stats::WeightedExponentialSum law(weights);
+  const double measured = a.mean_square0();
+  const double p = law.two_sided_p(measured);
+  const double ratio = measured / law.mean();
+  const double alpha = a.options().alpha;
+  const double z = (measured - law.mean()) / std::sqrt(law.variance());
+  std::string reason = fmt::format("mean h² = {:.4g} m² is {:.3f}× the band-limited m0 {:.4g} m² "
+                                   "(z = {:.2f}, p = {:.2g})",
+                                   measured, ratio, law.mean(), z, p);
+  if (p < alpha) {
+    reason += fmt::format(": energy off by a factor {:.3g} (Hs by {:.3g})", ratio, std::sqrt(ratio));
+  }
+  return {statistical("energy", a.subject(), measured, law.mean(), p, alpha,
+                      fmt::format("p ≥ α = {:.0e} (two-sided, exact law of Σ I)", alpha),
+                      reason)};
+}
+
+// ------------------------------------------------------------------ spectrum shape
+
+// u(k) = I(k)/μ(k) are independent Exp(1) over the resolved half plane. In rings of |k| with
+// n wave vectors each, Σ u ~ Gamma(n, 1) exactly; the rings' two-sided p-values combine by
+// Fisher's method. Energy where the case puts none (k = 0, Nyquist, μ below resolution) must
+// stay within the sampling law of what μ puts there plus rounding.
+Results check_spectrum(const Analysis& a, OceanCheckReport&) {
+  const double alpha = a.options().alpha / 2;
+  std::vector<const Wave*> order;
+  for (const Wave& w : a.waves()) order.push_back(&w);
+  std::sort(order.begin(), order.end(), [](const Wave* x, const Wave* y) { return x->k < y->k; });
+  const int n = int(order.size());
+  const int rings = std::clamp(n / 64, 1, 24);
+  std::vector<double> p_values;
+  double worst_ratio = 1, worst_k = 0, worst_p = 1;
+  double low_ratio = 1e300, high_ratio = 0;
+  for (int r = 0; r < rings; ++r) {
+    const int begin = r * n / rings, end = (r + 1) * n / rings;
+    double sum = 0;
+    for (int i = begin; i < end; ++i) sum += a.periodogram0(order[i]->index) / order[i]->mu;
+    const double count = end - begin;
+    const double p = std::min(1.0, 2 * std::min(stats::gamma_lower_p(count, sum),
+                                                stats::gamma_upper_p(count, sum)));
+    p_values.push_back(p);
+    const double ratio = sum / count;
+    low_ratio = std::min(low_ratio, ratio);
+    high_ratio = std::max(high_ratio, ratio);
+    if (p <= worst_p) {
+      worst_p = p;
+      worst_ratio = ratio;
+      worst_k = 0.5 * (order[begin]->k + order[end - 1]->k);
+    }
+  }
+  const double p = stats::fisher_combined_p(p_values);
+  Results out;
+  out.push_back(statistical(
+      "spectrum.shape", a.subject(), worst_ratio, 1.0, p, alpha,
+      fmt::format("p ≥ α = {:.0e} (Gamma law per ring, Fisher's method over {} rings)", alpha, rings),
+      fmt::format("periodogram/model {:.3f}…{:.3f} over {} rings of |k| ({} wave vectors); "
+                  "worst ring at k = {:.4g} rad/m: {:.3f} (p = {:.2g}){}",
+                  low_ratio, high_ratio, rings, n, worst_k, worst_ratio, worst_p,
+                  p < alpha ? " — the spectrum's shape differs from the case's" : "")));
+
+  // Energy where the case puts (almost) none.
+  const Grid& g = a.grid();
+  double stray = 0, largest_stray = 0;
+  std::size_t largest_at = 0;
+  std::vector<double> weights;
+  for (int j = 0; j < g.ny; ++j) {
+    const int m = Grid::signed_index(j, g.ny);
+    for (int i = 0; i < g.nx; ++i) {
+      const int nn = Grid::signed_index(i, g.nx);
+      const std::size_t e = std::size_t(j) * g.nx + i;
+      const bool unresolved = !g.carries_energy(nn, m) || a.mu()[e] < a.floor();
+      if (!unresolved) continue;
+      const double power = a.periodogram0(e);
+      stray += power;
+      if (power > largest_stray) {
+        largest_stray = power;
+        largest_at = e;
+      }
+      if (g.carries_energy(nn, m) && in_half_plane(nn, m) && a.mu()[e] > 0) weights.push_back(2 * a.mu()[e]);
+    }
+  }
+  double bound = 0;
+  if (!weights.empty()) bound = stats::WeightedExponentialSum(weights).quantile(1 - alpha);
+  // The field's own rounding (u per value, amplified by log2 N through a transform) may all
+  // land there.
+  const double rounding = std::pow(16 * a.unit_roundoff() * a.log2n(), 2) * a.mean_square0();
+  bound += rounding;
+  const int stray_i = int(largest_at % g.nx), stray_j = int(largest_at / g.nx);
+  const int stray_n = Grid::signed_index(stray_i, g.nx), stray_m = Grid::signed_index(stray_j, g.ny);
+  std::string where = fmt::format("largest at (n, m) = ({}, {})", stray_n, stray_m);
+  if (Grid::is_nyquist(stray_n, g.nx) || Grid::is_nyquist(stray_m, g.ny)) where += ", the Nyquist row/column";
+  if (Grid::is_nyquist(stray_n, g.nx) && Grid::is_nyquist(stray_m, g.ny)) {
+    where += " — a checkerboard (−1)^(i+j)";
+  }
+  const bool ok = stray <= bound;
+  out.push_back(bounded(
+      "spectrum.unexpected_energy", a.subject(), stray / a.mean_square0(), bound / a.mean_square0(),
+      fmt::format("fraction of mean h² where the case puts none ≤ {:.1e} (1 − α quantile + rounding)",
+                  bound / a.mean_square0()),
+      ok ? fmt::format("{:.1e} of the energy where the case puts none", stray / a.mean_square0())
+         : fmt::format("{:.3g} of the energy sits where the case puts none ({})",
+                       stray / a.mean_square0(), where)));
+  return out;
+}
+
+// ------------------------------------------------------------------ moments
+
+Results check_moments(const Analysis& a, OceanCheckReport& report) {
+  Results out;
+  const bool free = a.options().free_scale;
+  const double alpha = a.options().alpha / (free ? 3 : 4);
+  // m_n = Σk ω^n I(k) = Σ half plane 2 ω^n I(k); expected with μ; Cov(m_a, m_b) = Σ 4 ω^(a+b) μ².
+  std::array<double, 3> measured{}, expected{};
+  std::array<std::array<double, 3>, 3> cov{};
+  for (const Wave& w : a.half_plane()) {
+    const double I = a.periodogram0(w.index);
+    double power[3] = {1, w.omega, w.omega * w.omega};
+    for (int x = 0; x < 3; ++x) {
+      measured[x] += 2 * power[x] * I;
+      expected[x] += 2 * power[x] * w.mu;
+      for (int y = 0; y < 3; ++y) cov[x][y] += 4 * power[x] * power[y] * w.mu * w.mu;
+    }
+  }
+  // Hs = 4 √m0 with m0's exact law.
+  if (!free) {
+    std::vector<double> weights;
+    for (const Wave& w : a.half_plane()) weights.push_back(2 * w.mu);
+    const stats::WeightedExponentialSum law(weights);
+    const double lo = 4 * std::sqrt(law.quantile(alpha / 2)), hi = 4 * std::sqrt(law.quantile(1 - alpha / 2));
+    const double hs = 4 * std::sqrt(measured[0]), hs_expected = 4 * std::sqrt(expected[0]);
+    const double p = law.two_sided_p(measured[0]);
+    out.push_back(statistical("moments.hs", a.subject(), hs, hs_expected, p, alpha,
+                              fmt::format("p ≥ α = {:.1e}: Hs in [{:.4g}, {:.4g}] m", alpha, lo, hi),
+                              fmt::format("Hs {:.4g} m against {:.4g} m (band-limited){}", hs,
+                                          hs_expected, p < alpha ? " — wrong wave height" : "")));
+  }
+  // Periods as ratios of moments; delta method for their sampling variance.
+  auto period_check = [&](const char* name, int n, double exponent) {
+    // T = 2π (m0/m_n)^exponent; d log T = exponent (d m0/m0 − d m_n/m_n).
+    const double t = 2 * kPi * std::pow(measured[0] / measured[n], exponent);
+    const double t_expected = 2 * kPi * std::pow(expected[0] / expected[n], exponent);
+    const double var_log = exponent * exponent *
+                           (cov[0][0] / (expected[0] * expected[0]) -
+                            2 * cov[0][n] / (expected[0] * expected[n]) +
+                            cov[n][n] / (expected[n] * expected[n]));
+    const double z = std::log(t / t_expected) / std::sqrt(var_log);
+    const double p = stats::normal_two_sided_p(z);
+    out.push_back(statistical(fmt::format("moments.{}", name), a.subject(), t, t_expected, p, alpha,
+                              fmt::format("p ≥ α = {:.1e} (delta method, z = {:.2f})", alpha, z),
+                              fmt::format("{} {:.4g} s against {:.4g} s (z = {:.2f}){}", name, t,
+                                          t_expected, z,
+                                          p < alpha ? " — the spectrum's frequency content differs" : "")));
+  };
+  period_check("tm01", 1, 1.0);
+  period_check("tm02", 2, 0.5);
+
+  // Tp: the peak of the periodogram binned in ω (bins 4 % wide). Under the right spectrum, with
+  // probability ≥ 1 − α every bin lies within its two-sided α/B band (Bonferroni); the
+  // measured peak then falls among the bins whose upper bound reaches the largest lower bound.
+  struct Bin {
+    std::vector<double> weights;
+    double observed = 0, expected_energy = 0, omega_weighted = 0;
+  };
+  std::map<int, Bin> bins;
+  for (const Wave& w : a.waves()) {
+    if (w.omega <= 0) continue;
+    Bin& bin = bins[int(std::floor(std::log(w.omega) / std::log(1.04)))];
+    bin.weights.push_back(2 * w.mu);
+    bin.observed += 2 * a.periodogram0(w.index);
+    bin.expected_energy += 2 * w.mu;
+    bin.omega_weighted += 2 * w.mu * w.omega;
+  }
+  const double per_bin = alpha / double(2 * bins.size());
+  double largest_lower = 0;
+  std::map<int, std::pair<double, double>> band;
+  for (auto& [key, bin] : bins) {
+    const stats::WeightedExponentialSum law(bin.weights);
+    band[key] = {law.quantile(per_bin), law.quantile(1 - per_bin)};
+    largest_lower = std::max(largest_lower, band[key].first);
+  }
+  int peak = bins.begin()->first, expected_peak = peak;
+  double t_lo = 1e300, t_hi = 0;
+  for (auto& [key, bin] : bins) {
+    if (bin.observed > bins[peak].observed) peak = key;
+    if (bin.expected_energy > bins[expected_peak].expected_energy) expected_peak = key;
+  }
+  auto bin_period = [&](int key) { return 2 * kPi * bins[key].expected_energy / bins[key].omega_weighted; };
+  for (auto& [key, bin] : bins) {
+    if (band[key].second >= largest_lower) {
+      t_lo = std::min(t_lo, bin_period(key));
+      t_hi = std::max(t_hi, bin_period(key));
+    }
+  }
+  const double tp = bin_period(peak), tp_expected = bin_period(expected_peak);
+  const bool admissible = band[peak].second >= largest_lower;
+  CheckResult tp_result = statistical(
+      "moments.tp", a.subject(), tp, tp_expected, admissible ? 1.0 : 0.0, alpha,
+      fmt::format("peak bin among those that can be the peak at α = {:.1e}: Tp in [{:.4g}, {:.4g}] s",
+                  alpha, t_lo, t_hi),
+      fmt::format("Tp {:.4g} s (peak of the periodogram in 4 % bins of ω) against {:.4g} s{}", tp,
+                  tp_expected, admissible ? "" : " — the spectral peak is misplaced"));
+  tp_result.p_value = std::numeric_limits<double>::quiet_NaN();  // a set test, not a p-value
+  tp_result.passed = admissible;
+  tp_result.tolerance = 0.5 * (t_hi - t_lo);
+  out.push_back(tp_result);
+  if (free) report.skipped.push_back("moments.hs: the case declares a free spectrum scale");
+  return out;
+}
+
+// ------------------------------------------------------------------ dispersion
+
+// Exact for a right surface: at each resolved k the frames are a e^(−iωt) + b e^(iωt) at the
+// case's ω(k), to rounding. The residual energy fraction left by that fit and the ω that fits
+// best, per wave vector, measure how far the engine's dispersion is from the case's.
+double best_omega(double omega0, double max_omega, const std::vector<double>& times,
+                  const std::vector<Complex>& y) {
+  auto residual_at = [&](double omega) {
+    Complex a, b;
+    double residual = 0;
+    if (!fit_two_waves(omega, times, y, a, b, residual)) return std::numeric_limits<double>::infinity();
+    return residual;
+  };
+  const double lo = omega0 / 3, hi = std::min(3 * omega0, max_omega);
+  const int steps = 1200;
+  double best = omega0, best_residual = residual_at(omega0);
+  for (int s = 0; s <= steps; ++s) {
+    const double omega = lo * std::pow(hi / lo, double(s) / steps);
+    const double r = residual_at(omega);
+    if (r < best_residual) {
+      best_residual = r;
+      best = omega;
+    }
+  }
+  // Golden-section refinement around the best grid point.
+  double left = best * std::pow(hi / lo, -1.0 / steps), right = best * std::pow(hi / lo, 1.0 / steps);
+  const double golden = 0.5 * (std::sqrt(5.0) - 1);
+  for (int i = 0; i < 100 && right - left > 1e-14 * best; ++i) {
+    const double x1 = right - golden * (right - left), x2 = left + golden * (right - left);
+    if (residual_at(x1) < residual_at(x2)) right = x2; else left = x1;
+  }
+  return 0.5 * (left + right);
+}
+
+Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
+  if (a.times().size() < 3) {
+    report.skipped.push_back("dispersion: needs ≥ 3 frames (the fit has 2 complex unknowns per k)");
+    return {};
+  }
+  const auto& fits = a.wave_fits();
+  if (fits.empty()) {
+    report.skipped.push_back("dispersion: no wave vector's two waves are identifiable from these "
+                             "frame times (2ω dt ≈ 0 mod 2π everywhere)");
+    return {};
+  }
+  double residual = 0, energy = 0;
+  for (const WaveFit& f : fits) {
+    residual += f.residual;
+    energy += f.energy;
+  }
+  const double fraction = residual / std::max(energy, 1e-300);
+  // Rounding alone leaves at most (u log2 N)² of the energy; allow 64× that.
+  const double bound = std::pow(64 * a.unit_roundoff() * a.log2n(), 2);
+  Results out;
+
+  // ω per wave vector, for the most energetic wave vectors whose ω is below the frames'
+  // Nyquist frequency π/dt (above it ω aliases).
+  double dt = 0;
+  for (std::size_t f = 1; f < a.times().size(); ++f) dt = std::max(dt, a.times()[f] - a.times()[f - 1]);
+  const double max_omega = 0.95 * kPi / dt;
+  std::vector<const WaveFit*> strongest;
+  for (const WaveFit& f : fits) {
+    if (f.wave->omega > 0 && 3 * f.wave->omega / 2 < max_omega) strongest.push_back(&f);
+  }
+  std::sort(strongest.begin(), strongest.end(),
+            [](const WaveFit* x, const WaveFit* y) { return x->energy > y->energy; });
+  if (strongest.size() > 24) strongest.resize(24);
+  const auto& series = a.wave_series();
+  std::vector<std::pair<double, double>> ratios;  // (ω measured / ω case, energy)
+  for (const WaveFit* f : strongest) {
+    const std::size_t w = std::size_t(f->wave - a.waves().data());
+    const double omega = best_omega(f->wave->omega, max_omega, a.times(), series[w]);
+    ratios.push_back({omega / f->wave->omega, f->energy});
+  }
+  double ratio = 1;
+  if (!ratios.empty()) {
+    std::sort(ratios.begin(), ratios.end());
+    double total = 0, half = 0;
+    for (auto& r : ratios) total += r.second;
+    for (auto& r : ratios) {
+      half += r.second;
+      if (half >= total / 2) {
+        ratio = r.first;
+        break;
+      }
+    }
+  }
+  std::string diagnosis;
+  if (fraction > bound) {
+    diagnosis = " — the waves do not evolve as the case's dispersion says";
+    if (!ratios.empty() && std::abs(ratio - 1) > 1e-3) {
+      diagnosis += fmt::format(" (ω is {:.3f}× the case's)", ratio);
+    }
+  }
+  out.push_back(bounded(
+      "dispersion.residual", a.subject(), fraction, bound,
+      fmt::format("residual energy fraction ≤ {:.1e} (rounding)", bound),
+      fmt::format("fit a e^(−iωt) + b e^(iωt) at ω(k) leaves {:.2e} of the energy over {} wave "
+                  "vectors and {} frames{}",
+                  fraction, fits.size(), a.times().size(), diagnosis)));
+  if (!ratios.empty()) {
+    const double error = std::abs(ratio - 1);
+    const double omega_bound = std::max(1e-6, 64 * a.unit_roundoff() * a.log2n());
+    out.push_back(bounded(
+        "dispersion.omega", a.subject(), error, omega_bound,
+        fmt::format("|ω measured / ω(k) − 1| ≤ {:.1e} (energy-weighted median)", omega_bound),
+        fmt::format("measured ω / case ω = {:.6f} (median over the {} most energetic wave "
+                    "vectors){}",
+                    ratio, ratios.size(), error <= omega_bound ? "" : " — wrong dispersion relation")));
+  } else {
+    report.skipped.push_back("dispersion.omega: every energetic ω is above the frames' Nyquist "
+                             "frequency π/dt");
+  }
+  return out;
+}
+
+// ------------------------------------------------------------------ direction
+
+// Solves the small symmetric positive definite system M x = v (Gaussian elimination).
+template <std::size_t D>
+std::array<double, D> solve(std::array<std::array<double, D>, D> m, std::array<double, D> v) {
+  for (std::size_t c = 0; c < D; ++c) {
+    std::size_t pivot = c;
+    for (std::size_t r = c + 1; r < D; ++r) {
+      if (std::abs(m[r][c]) > std::abs(m[pivot][c])) pivot = r;
+    }
+    std::swap(m[c], m[pivot]);
+    std::swap(v[c], v[pivot]);
+    for (std::size_t r = c + 1; r < D; ++r) {
+      const double factor = m[r][c] / m[c][c];
+      for (std::size_t k = c; k < D; ++k) m[r][k] -= factor * m[c][k];
+      v[r] -= factor * v[c];
+    }
+  }
+  std::array<double, D> x{};
+  for (std::size_t c = D; c-- > 0;) {
+    double sum = v[c];
+    for (std::size_t k = c + 1; k < D; ++k) sum -= m[c][k] * x[k];
+    x[c] = sum / m[c][c];
+  }
+  return x;
+}
+
+// From the fitted travelling waves: |a|² is the power moving along +k (E = τ(k)), |b|² along
+// −k (E = τ(−k)), all independent exponentials. T = Dᵀ C⁻¹ D of the score below ~ χ²(4)
+// (central limit over the wave vectors). And a, b are independent: Re(a b) / √(τ+ τ− / 2)
+// has mean 0 and variance 1.
+Results check_direction(const Analysis& a, OceanCheckReport& report) {
+  if (a.times().size() < 2) {
+    report.skipped.push_back("direction: needs ≥ 2 frames (one frame cannot tell k from −k)");
+    return {};
+  }
+  const auto& fits = a.wave_fits();
+  if (fits.empty()) {
+    report.skipped.push_back("direction: no wave vector's two waves are identifiable from these frame times");
+    return {};
+  }
+  const double alpha = a.options().alpha / 2;
+  struct Entry { double theta, power, tau; };
+  std::vector<Entry> entries;
+  for (const WaveFit& f : fits) {
+    entries.push_back({f.wave->theta, std::norm(f.a), f.wave->tau_plus});
+    entries.push_back({f.wave->theta + kPi, std::norm(f.b), f.wave->tau_minus});
+  }
+  auto harmonics = [](double theta) {
+    return std::array<double, 4>{std::cos(theta), std::sin(theta), std::cos(2 * theta), std::sin(2 * theta)};
+  };
+  // Score test of a directional modulation τ (1 + β·g(θ)): with u = P/τ ~ Exp(1) independent,
+  // D = Σ (u − 1)(g − ḡ) has mean 0 and covariance Σ (g − ḡ)(g − ḡ)ᵀ; equal weights per wave
+  // make the central limit accurate even where a few waves carry most of the energy. Only
+  // waves above the rounding floor take part.
+  std::array<double, 4> mean_g{};
+  int used = 0;
+  for (const Entry& e : entries) {
+    if (!(e.tau >= a.floor())) continue;
+    const auto g = harmonics(e.theta);
+    for (int i = 0; i < 4; ++i) mean_g[i] += g[i];
+    ++used;
+  }
+  for (double& v : mean_g) v /= std::max(used, 1);
+  std::array<double, 4> d{};
+  std::array<std::array<double, 4>, 4> cov{};
+  Complex measured_resultant = 0, expected_resultant = 0;
+  double power_total = 0, tau_total = 0;
+  for (const Entry& e : entries) {
+    measured_resultant += e.power * std::polar(1.0, e.theta);
+    expected_resultant += e.tau * std::polar(1.0, e.theta);
+    power_total += e.power;
+    tau_total += e.tau;
+    if (!(e.tau >= a.floor())) continue;
+    auto g = harmonics(e.theta);
+    for (int i = 0; i < 4; ++i) g[i] -= mean_g[i];
+    for (int i = 0; i < 4; ++i) {
+      d[i] += (e.power / e.tau - 1) * g[i];
+      for (int j = 0; j < 4; ++j) cov[i][j] += g[i] * g[j];
+    }
+  }
+  for (int i = 0; i < 4; ++i) cov[i][i] *= 1 + 1e-12;  // guard a degenerate (isotropic) case
+  const auto x = solve<4>(cov, d);
+  double t = 0;
+  for (int i = 0; i < 4; ++i) t += d[i] * x[i];
+  const double p = stats::chi_squared_upper_p(t, 4);
+  const double theta_measured = std::arg(measured_resultant) * kDegree;
+  const double theta_expected = std::arg(expected_resultant) * kDegree;
+  const double spread_measured = std::sqrt(2 * (1 - std::abs(measured_resultant) / power_total)) * kDegree;
+  const double spread_expected = std::sqrt(2 * (1 - std::abs(expected_resultant) / tau_total)) * kDegree;
+  double turn = std::remainder(theta_measured - theta_expected, 360.0);
+  std::string diagnosis;
+  if (p < alpha) {
+    if (std::abs(turn) > 135) {
+      diagnosis = " — waves travel against the wind (time reversed or e^(+iωt) on h̃0(k))";
+    } else if (std::abs(measured_resultant) < 0.25 * std::abs(expected_resultant)) {
+      diagnosis = " — as much energy travels along −k as along +k: standing waves";
+    } else {
+      diagnosis = " — the directional distribution differs from the case's spreading";
+    }
+  }
+  Results out;
+  out.push_back(statistical(
+      "direction.distribution", a.subject(), theta_measured, theta_expected, p, alpha,
+      fmt::format("p ≥ α = {:.1e} (χ²(4) of the first two circular harmonics)", alpha),
+      fmt::format("mean direction {:.1f}° (spread {:.1f}°) against {:.1f}° ({:.1f}°), "
+                  "T = {:.1f}{}",
+                  theta_measured, spread_measured, theta_expected, spread_expected, t, diagnosis)));
+
+  double sum = 0;
+  int count = 0;
+  for (const WaveFit& f : fits) {
+    // Both waves must stand above the rounding floor: a wave the model makes 10⁻³⁰ of the
+    // peak is pure rounding noise in the data, not a sample of its law.
+    if (!(f.wave->tau_plus >= a.floor() && f.wave->tau_minus >= a.floor())) continue;
+    const double product = f.wave->tau_plus * f.wave->tau_minus;
+    sum += (f.a * f.b).real() / std::sqrt(0.5 * product);
+    ++count;
+  }
+  if (count < 8) {
+    report.skipped.push_back("direction.travelling: fewer than 8 wave vectors carry energy both "
+                             "ways (one-sided spreading)");
+    return out;
+  }
+  const double z = sum / std::sqrt(double(count));
+  const double p_travel = stats::normal_two_sided_p(z);
+  out.push_back(statistical(
+      "direction.travelling", a.subject(), z, 0.0, p_travel, alpha,
+      fmt::format("p ≥ α = {:.1e} (normal, {} wave vectors)", alpha, count),
+      fmt::format("waves at k and −k independent: z = {:.2f}{}", z,
+                  p_travel < alpha ? " — h̃0(k) and h̃0(−k) are correlated (the same random pair "
+                                     "reused, or standing waves)"
+                                   : "")));
+  return out;
+}
+
+// ------------------------------------------------------------------ statistics
+
+Results check_statistics(const Analysis& a, OceanCheckReport& report) {
+  Results out;
+  const bool several_frames = a.times().size() >= 2;
+  const double alpha = a.options().alpha / (several_frames ? 4 : 3);
+  const auto& h = a.frames().field(0, Field::height);
+  const double n = double(a.count());
+
+  // Sample skewness and kurtosis of a Gaussian field on the torus: with covariance
+  // C(d) = Σk μ(k) e^(ik·d), Var(mean h³) = (6/n) Σd C(d)³ and the kurtosis linearizes to
+  // mean He4(h)/σ⁴ with Var = (24/n) Σd C(d)⁴ / σ⁸ (Isserlis; Σd C(d) = 0 as k = 0 is empty).
+  std::vector<Complex> mu_complex(a.mu().begin(), a.mu().end());
+  const auto covariance = field_from_spectrum(mu_complex, a.grid());
+  double sigma2 = covariance[0], c3 = 0, c4 = 0;
+  for (double c : covariance) {
+    c3 += c * c * c;
+    c4 += c * c * c * c;
+  }
+  double m2 = 0, m3 = 0, m4 = 0;
+  for (double x : h) {
+    const double x2 = x * x;
+    m2 += x2;
+    m3 += x2 * x;
+    m4 += x2 * x2;
+  }
+  m2 /= n;
+  m3 /= n;
+  m4 /= n;
+  const double skewness = m3 / std::pow(m2, 1.5);
+  const double kurtosis = m4 / (m2 * m2) - 3;
+  const double sd_skew = std::sqrt(6 * std::max(c3, 0.0) / n) / std::pow(sigma2, 1.5);
+  const double sd_kurt = std::sqrt(24 * std::max(c4, 0.0) / n) / (sigma2 * sigma2);
+  const double z_skew = skewness / sd_skew, z_kurt = kurtosis / sd_kurt;
+  const double p_skew = stats::normal_two_sided_p(z_skew), p_kurt = stats::normal_two_sided_p(z_kurt);
+  out.push_back(statistical("statistics.skewness", a.subject(), skewness, 0.0, p_skew, alpha,
+                            fmt::format("p ≥ α = {:.1e}, sd {:.3g} from the spectrum", alpha, sd_skew),
+                            fmt::format("skewness of heights {:.3g} (z = {:.2f}){}", skewness, z_skew,
+                                        p_skew < alpha ? " — heights are not Gaussian" : "")));
+  out.push_back(statistical("statistics.kurtosis", a.subject(), kurtosis, 0.0, p_kurt, alpha,
+                            fmt::format("p ≥ α = {:.1e}, sd {:.3g} from the spectrum", alpha, sd_kurt),
+                            fmt::format("excess kurtosis of heights {:.3g} (z = {:.2f}){}", kurtosis,
+                                        z_kurt, p_kurt < alpha ? " — heights are not Gaussian" : "")));
+
+  // Gaussian amplitudes: u = I/μ ~ Exp(1) independently; Anderson–Darling with known law.
+  std::vector<double> cdf, log_survival;
+  for (const Wave& w : a.waves()) {
+    const double u = a.periodogram0(w.index) / w.mu;
+    cdf.push_back(-std::expm1(-u));
+    log_survival.push_back(-u);
+  }
+  const double a2 = stats::anderson_darling_statistic(cdf, log_survival);
+  const double p_ad = stats::anderson_darling_p(a2, int(cdf.size()));
+  out.push_back(statistical(
+      "statistics.gaussian_amplitudes", a.subject(), a2, 1.0, p_ad, alpha,
+      fmt::format("p ≥ α = {:.1e} (Anderson–Darling, I/μ ~ Exp(1), n = {})", alpha, cdf.size()),
+      fmt::format("A² = {:.3g} for the normalized periodogram{}", a2,
+                  p_ad < alpha ? " — the amplitudes are not complex Gaussian (uniform noise?)" : "")));
+
+  // Hs steady: m0(t) − m0(t0) = 4 Σ half plane Re(a b̄ (e^(−2iωt) − e^(−2iωt0))), mean 0,
+  // variance 8 Σ τ+ τ− |e^(−2iωt) − e^(−2iωt0)|², plus rounding.
+  if (!several_frames) {
+    report.skipped.push_back("statistics.hs_steady: needs ≥ 2 frames");
+    return out;
+  }
+  const auto& times = a.times();
+  const double m0_first = a.mean_square0();
+  double worst_z = 0, hs_min = 1e300, hs_max = 0;
+  int worst_frame = 0;
+  for (std::size_t f = 1; f < times.size(); ++f) {
+    const double m0 = mean_square(a.frames().field(int(f), Field::height));
+    double variance = 0;
+    for (const Wave& w : a.half_plane()) {
+      const double change = std::norm(std::polar(1.0, -2 * w.omega * times[f]) -
+                                      std::polar(1.0, -2 * w.omega * times[0]));
+      variance += 8 * w.tau_plus * w.tau_minus * change;
+    }
+    variance += std::pow(16 * a.unit_roundoff() * a.log2n() * m0_first, 2);
+    const double z = (m0 - m0_first) / std::sqrt(variance);
+    if (std::abs(z) >= std::abs(worst_z)) {
+      worst_z = z;
+      worst_frame = int(f);
+    }
+    hs_min = std::min(hs_min, 4 * std::sqrt(m0));
+    hs_max = std::max(hs_max, 4 * std::sqrt(m0));
+  }
+  hs_min = std::min(hs_min, 4 * std::sqrt(m0_first));
+  hs_max = std::max(hs_max, 4 * std::sqrt(m0_first));
+  const double frames_compared = double(times.size() - 1);
+  const double p_steady = std::min(1.0, frames_compared * stats::normal_two_sided_p(worst_z));
+  out.push_back(statistical(
+      "statistics.hs_steady", a.subject(), 4 * std::sqrt(m0_first), hs_max - hs_min, p_steady, alpha,
+      fmt::format("p ≥ α = {:.1e} (Bonferroni over {} frames)", alpha, times.size() - 1),
+      fmt::format("Hs {:.4g}…{:.4g} m over {} frames; largest change z = {:.2f} at frame {}{}", hs_min,
+                  hs_max, times.size(), worst_z, worst_frame,
+                  p_steady < alpha ? " — Hs drifts over the frames" : "")));
+  return out;
+}
+
+// ------------------------------------------------------------------ derived fields
+
+// Each derived field against its definition applied to the height field (conventions
+// §Derived fields). Rounding bound: the stored height's rounding, white with variance ≤ u²
+// mean(h²), pushed through the field's multiplier, plus the field's own rounding; 10× that.
+Results check_derived(const Analysis& a, OceanCheckReport& report) {
+  const Grid& g = a.grid();
+  const double lambda = a.ocean_case().choppiness;
+  const std::vector<Field> derived = {Field::slope_x, Field::slope_y, Field::disp_x, Field::disp_y,
+                                      Field::jacobian};
+  std::vector<Field> present;
+  for (Field f : derived) {
+    if (a.frames().has(f)) present.push_back(f);
+  }
+  if (present.empty()) {
+    report.skipped.push_back("derived: no slope, displacement or Jacobian field given");
+    return {};
+  }
+  // Multipliers per wave vector in FFT order.
+  auto multiplier = [&](Field field, double kx, double ky) -> Complex {
+    const double k = std::hypot(kx, ky);
+    if (k == 0) return 0;
+    switch (field) {
+      case Field::slope_x: return {0, kx};
+      case Field::slope_y: return {0, ky};
+      case Field::disp_x: return {0, lambda * kx / k};
+      case Field::disp_y: return {0, lambda * ky / k};
+      default: return 0;
+    }
+  };
+  std::map<Field, double> worst_error, bound_at_worst;
+  std::vector<std::size_t> checked_frames = {0};
+  if (a.frames().frames.size() > 1) checked_frames.push_back(a.frames().frames.size() - 1);
+  const double u = a.unit_roundoff();
+  for (std::size_t frame : checked_frames) {
+    const auto& h = a.frames().field(int(frame), Field::height);
+    const auto spectrum = frame == 0 ? a.spectrum0() : field_spectrum(h, g);
+    const double h_power = mean_square(h);
+    auto derive = [&](const std::function<Complex(double, double)>& m, double& mean_m2) {
+      std::vector<Complex> s(spectrum.size());
+      mean_m2 = 0;
+      for (int j = 0; j < g.ny; ++j) {
+        const int mm = Grid::signed_index(j, g.ny);
+        for (int i = 0; i < g.nx; ++i) {
+          const int nn = Grid::signed_index(i, g.nx);
+          const std::size_t e = std::size_t(j) * g.nx + i;
+          const Complex mult = g.carries_energy(nn, mm) ? m(nn * g.dkx(), mm * g.dky()) : 0.0;
+          s[e] = mult * spectrum[e];
+          mean_m2 += std::norm(mult);
+        }
+      }
+      mean_m2 /= double(spectrum.size());
+      return field_from_spectrum(s, g);
+    };
+    for (Field field : present) {
+      std::vector<double> expected;
+      std::vector<double> got = a.frames().field(int(frame), field);
+      double mean_m2 = 0;
+      if (field == Field::jacobian) {
+        double m_xx = 0, m_yy = 0, m_xy = 0;
+        const auto dxx = derive([&](double kx, double ky) { return Complex(-lambda * kx * kx / std::hypot(kx, ky)); }, m_xx);
+        const auto dyy = derive([&](double kx, double ky) { return Complex(-lambda * ky * ky / std::hypot(kx, ky)); }, m_yy);
+        const auto dxy = derive([&](double kx, double ky) { return Complex(-lambda * kx * ky / std::hypot(kx, ky)); }, m_xy);
+        expected.resize(dxx.size());
+        for (std::size_t p = 0; p < dxx.size(); ++p) {
+          expected[p] = (1 + dxx[p]) * (1 + dyy[p]) - dxy[p] * dxy[p] - 1;  // J − 1
+          got[p] -= 1;
+        }
+        mean_m2 = m_xx + m_yy + 2 * m_xy;
+      } else {
+        expected = derive([&](double kx, double ky) { return multiplier(field, kx, ky); }, mean_m2);
+      }
+      std::vector<double> difference(expected.size());
+      for (std::size_t p = 0; p < expected.size(); ++p) difference[p] = got[p] - expected[p];
+      const double scale = std::sqrt(std::max(mean_square(expected), 1e-300));
+      const double error = std::sqrt(mean_square(difference)) / scale;
+      const double own = field == Field::jacobian ? 1 + mean_square(expected) : mean_square(expected);
+      const double rounding = std::sqrt(u * u * (h_power * mean_m2 + own)) / scale;
+      const double bound = 10 * rounding + 64 * kFp64Roundoff * a.log2n();
+      if (error / bound >= worst_error[field] / std::max(bound_at_worst[field], 1e-300) ||
+          !worst_error.count(field)) {
+        worst_error[field] = error;
+        bound_at_worst[field] = bound;
+      }
+    }
+  }
+  Results out;
+  for (Field field : present) {
+    const double error = worst_error[field], bound = bound_at_worst[field];
+    const bool ok = error <= bound;
+    std::string diagnosis;
+    if (!ok) {
+      diagnosis = " — inconsistent with the height field";
+      if (field == Field::disp_x || field == Field::disp_y) {
+        diagnosis += error > 1.5 ? " (sign flipped? conventions: D ↔ +i k/|k| h̃, λ > 0 sharpens crests)"
+                                 : " (choppiness λ not the case's?)";
+      }
+      if (field == Field::jacobian) diagnosis += " (J built without λ, or from other displacements)";
+    }
+    out.push_back(bounded(fmt::format("derived.{}", reference::field_name(field)), a.subject(), error,
+                          bound, fmt::format("rel rms error ≤ {:.1e} (rounding)", bound),
+                          fmt::format("{} against its definition from h: rel rms error {:.2e}{}",
+                                      reference::field_name(field), error, diagnosis)));
+  }
+  return out;
+}
+
+using CheckFunction = Results (*)(const Analysis&, OceanCheckReport&);
+const std::vector<std::pair<std::string, CheckFunction>>& registry() {
+  static const std::vector<std::pair<std::string, CheckFunction>> checks = {
+      {"hermitian", check_hermitian},   {"parseval", check_parseval},
+      {"energy", check_energy},         {"spectrum", check_spectrum},
+      {"moments", check_moments},       {"dispersion", check_dispersion},
+      {"direction", check_direction},   {"statistics", check_statistics},
+      {"derived", check_derived}};
+  return checks;
+}
+
+}  // namespace
+
+std::vector<std::string> ocean_check_names() {
+  std::vector<std::string> names;
+  for (const auto& [name, function] : registry()) names.push_back(name);
+  return names;
+}
+
+OceanCheckReport run_ocean_checks(const OceanCase& ocean_case, const FrameSequence& frames,
+                                  const OceanCheckOptions& options,
+                                  const std::vector<std::string>& checks) {
+  for (const auto& name : checks) {
+    const auto& all = registry();
+    if (std::none_of(all.begin(), all.end(), [&](const auto& entry) { return entry.first == name; })) {
+      std::string valid;
+      for (const auto& n : ocean_check_names()) valid += (valid.empty() ? "" : ", ") + n;
+      throw InvalidInput("unknown ocean check '" + name + "'; valid: " + valid);
+    }
+  }
+  const Analysis analysis(ocean_case, frames, options);
+  OceanCheckReport report;
+  report.fitted_scale = analysis.scale();
+  for (const auto& [name, function] : registry()) {
+    if (!checks.empty() && std::find(checks.begin(), checks.end(), name) == checks.end()) continue;
+    for (auto& result : function(analysis, report)) report.results.push_back(std::move(result));
+  }
+  if (options.free_scale) {
+    CheckResult scale;
+    scale.check = "scale";
+    scale.subject = analysis.subject();
+    scale.measured = analysis.scale();
+    scale.expected = 1;
+    scale.criterion = "reported, not judged (free scale)";
+    scale.passed = true;
+    scale.reason = fmt::format("the engine's spectrum is {:.4g}× the case's (Hs × {:.4g})",
+                               analysis.scale(), std::sqrt(analysis.scale()));
+    report.results.insert(report.results.begin(), scale);
+  }
+  return report;
+}
+
+}  // namespace swell::validation

@@ -1,0 +1,57 @@
+#pragma once
+// The checks that judge a sampled ocean surface against its case (DESIGN.md §5,
+// docs/checks.md). Each consumes only frames and the case — never a synthesizer's internals —
+// so the same code judges swell's own backends and another engine's files.
+//
+// Every statistical check has a false-alarm rate α (default 1e-3): on a right surface it fails
+// with probability α, derived from the sampling distribution of its statistic. A check with
+// several parts splits its α among them (Bonferroni), so each check as a whole keeps α. Exact
+// checks (Hermitian, Parseval, dispersion, derived fields) are judged against rounding bounds.
+//
+//   hermitian   imaginary residue of complex fields; Hermitian symmetry of real ones
+//   parseval    Σ h² = N Σ |ĥ|² through the analysis transform
+//   energy      mean h² against the band-limited m0 (exact sampling law of Σ I)
+//   spectrum    periodogram against μ(k) in rings of |k| (exact Gamma laws, Fisher's method);
+//               energy where the case puts none
+//   moments     Hs, Tp, Tm01, Tm02 against the band-limited spectrum
+//   dispersion  per wave vector, frames fit a e^(−iωt) + b e^(iωt) at the case's ω(k): residual
+//               energy fraction; ω measured per wave vector against ω(k)
+//   direction   energy travelling along +k against −k: mean direction and spread against D;
+//               waves at k and −k independent (travelling, not standing)
+//   statistics  skewness and kurtosis of heights; Gaussian amplitudes (Anderson–Darling);
+//               Hs steady across frames
+//   derived     slopes, displacements and Jacobian consistent with the height field
+#include <string>
+#include <vector>
+
+#include "swell/reference/fields.hpp"
+#include "swell/reference/ocean_case.hpp"
+#include "swell/validation/check_result.hpp"
+
+namespace swell::validation {
+
+struct OceanCheckOptions {
+  double alpha = 1e-3;                    // false-alarm rate of each check
+  std::string analysis_backend = "fftw";  // transform the Parseval check runs (fp64)
+  // The engine scales its spectrum by an unknown constant: fit it (reported as
+  // "scale"), judge everything else up to it, and do not judge the energy.
+  bool free_scale = false;
+};
+
+struct OceanCheckReport {
+  std::vector<CheckResult> results;
+  std::vector<std::string> skipped;  // "dispersion: needs ≥ 2 frames", …
+  double fitted_scale = 1;           // Σ I / Σ μ when free_scale, else 1
+};
+
+// The names of the checks, in the order they run.
+std::vector<std::string> ocean_check_names();
+
+// Runs the checks named (all when empty) on `frames`, which must match the case's grid.
+// Throws InvalidInput for an unknown check name, mismatched grids or frames without height.
+OceanCheckReport run_ocean_checks(const reference::OceanCase& ocean_case,
+                                  const reference::FrameSequence& frames,
+                                  const OceanCheckOptions& options = {},
+                                  const std::vector<std::string>& checks = {});
+
+}  // namespace swell::validation
