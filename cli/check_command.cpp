@@ -1,4 +1,5 @@
-// swell check [reference | transforms | all] [--impl NAME|all] [--json FILE|-] [--report-dir DIR]
+// swell check [reference | transforms | ocean | all] [--impl NAME|all] [--alpha A] [--json FILE|-]
+//             [--report-dir DIR]
 // Runs swell's validations, prints tables and writes <report-dir>/check_<what>.{json,md}.
 #include <fmt/format.h>
 
@@ -8,6 +9,7 @@
 #include "commands.hpp"
 #include "swell/impls/transform.hpp"
 #include "swell/reference/errors.hpp"
+#include "swell/validation/ocean_matrix.hpp"
 #include "swell/validation/reference_checks.hpp"
 #include "swell/validation/report.hpp"
 #include "swell/validation/transform_checks.hpp"
@@ -21,6 +23,8 @@ struct CheckOptions {
   std::string json;
   std::string report_dir = "reports/latest";
   std::string data_dir;
+  double alpha = 1e-3;
+  int n = 128;
 };
 
 int run_check(const CheckOptions& o) {
@@ -39,6 +43,18 @@ int run_check(const CheckOptions& o) {
     }
     checks = validation::run_reference_checks(data);
   }
+  std::vector<validation::OceanMatrixRow> ocean;
+  if (o.what == "ocean" || all) {
+    validation::OceanCheckOptions options;
+    options.alpha = o.alpha;
+    for (const auto& name : impls) {
+      // `null` copies instead of transforming: there is no surface to judge.
+      if (o.impl == "all" && !impls::make_backend(name)->capabilities().exact) continue;
+      std::cerr << "checking ocean surfaces synthesized with " << name << "…\n";
+      const auto rows = validation::run_ocean_matrix(name, options, o.n);
+      ocean.insert(ocean.end(), rows.begin(), rows.end());
+    }
+  }
   std::vector<validation::TransformAccuracy> transforms;
   if (o.what == "transforms" || all) {
     for (const auto& name : impls) {
@@ -50,9 +66,11 @@ int run_check(const CheckOptions& o) {
 
   nlohmann::json document = validation::to_json(checks);
   document["transforms"] = validation::transforms_to_json(transforms)["transforms"];
+  if (!ocean.empty()) document["ocean"] = validation::ocean_matrix_to_json(ocean);
   const bool passed = validation::all_passed(checks) &&
                       std::all_of(transforms.begin(), transforms.end(),
-                                  [](const auto& t) { return t.pass; });
+                                  [](const auto& t) { return t.pass; }) &&
+                      std::all_of(ocean.begin(), ocean.end(), [](const auto& r) { return r.passed(); });
   document["pass"] = passed;
 
   const std::string title = "swell check " + o.what;
@@ -61,12 +79,18 @@ int run_check(const CheckOptions& o) {
     markdown += "\n## Transform accuracy against the long-double oracle\n\n```\n" +
                 validation::render_transform_table(transforms) + "```\n";
   }
+  if (!ocean.empty()) {
+    markdown += fmt::format("\n## Ocean surfaces: every check on the built-in cases ({}², α = {:g} per "
+                            "check)\n\n```\n{}```\n",
+                            o.n, o.alpha, validation::render_ocean_matrix(ocean));
+  }
   validation::write_report(o.report_dir, "check_" + o.what, document, markdown);
   const std::string stem = (std::filesystem::path(o.report_dir) / ("check_" + o.what)).string();
   if (!o.json.empty()) write_json(o.json, document);
   if (o.json != "-") {
     if (!checks.empty()) std::cout << validation::render_table(checks);
     if (!transforms.empty()) std::cout << "\n" << validation::render_transform_table(transforms);
+    if (!ocean.empty()) std::cout << "\n" << validation::render_ocean_matrix(ocean);
     std::cout << fmt::format("{}\nreport: {}.{{json,md}}\n", passed ? "PASS" : "FAIL", stem);
   }
   return passed ? 0 : 1;
@@ -76,13 +100,20 @@ int run_check(const CheckOptions& o) {
 
 Action add_check_command(CLI::App& app) {
   auto o = std::make_shared<CheckOptions>();
-  app.add_option("what", o->what, "which validations: reference, transforms, or all (default)")
-      ->check(CLI::IsMember({"reference", "transforms", "all"}));
+  app.add_option("what", o->what,
+                 "which validations: reference, transforms, ocean, or all (default)")
+      ->check(CLI::IsMember({"reference", "transforms", "ocean", "all"}));
   app.add_option("--impl", o->impl, "transform backend to check, or all (default)");
   app.add_option("--json", o->json, "also write the results as JSON to FILE, or - for stdout");
   app.add_option("--report-dir", o->report_dir, "where the JSON and Markdown reports go")
       ->capture_default_str();
   app.add_option("--data-dir", o->data_dir, "swell's data/ directory (default: found)");
+  app.add_option("--alpha", o->alpha, "ocean: false-alarm rate of each statistical check")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-12, 0.5));
+  app.add_option("--n", o->n, "ocean: samples per side of the built-in cases")
+      ->capture_default_str()
+      ->check(CLI::Range(16, 1024));
   return [o] { return run_check(*o); };
 }
 

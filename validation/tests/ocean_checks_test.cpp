@@ -14,6 +14,7 @@
 #include "swell/impls/synthesizer.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/validation/ocean_checks.hpp"
+#include "swell/validation/ocean_matrix.hpp"
 #include "swell/validation/statistics.hpp"
 #include "test_engine.hpp"
 
@@ -108,42 +109,15 @@ TEST(SamplingLaws, FisherCombinationOfOnePValueIsItself) {
 
 // ------------------------------------------------------------------ cases
 
-OceanCase base_case(int n, double length) {
-  OceanCase c;
-  c.grid = Grid::create(n, n, length, length);
-  c.wind_dir_deg = 30;
-  c.choppiness = 0.8;
-  c.dt = 0.5;
-  c.frames = 8;
-  c.seed = 2026;
-  return c;
+// The built-in cases of `swell check ocean`, at 64².
+OceanCase builtin(const std::string& name, int n = 64) {
+  for (const auto& c : swell::validation::builtin_ocean_cases(n)) {
+    if (c.name == name) return c.ocean_case;
+  }
+  throw std::runtime_error("no built-in case " + name);
 }
-
-// The built-in cases of `swell check ocean` (validation/src/ocean_matrix.cpp mirrors them).
-OceanCase jonswap_deep(int n = 64) {
-  OceanCase c = base_case(n, 400);
-  c.spectrum = {"jonswap", {{"hs", 3.0}, {"tp", 8.0}, {"gamma", 3.3}}, {}};
-  c.spreading = {"cos2s", {{"s", 10.0}}, {}};
-  return c;
-}
-OceanCase tma_shallow(int n = 64) {
-  OceanCase c = base_case(n, 300);
-  c.spectrum = {"tma", {{"hs", 1.5}, {"tp", 8.0}, {"gamma", 3.3}}, {}};
-  c.spreading = {"cos2s", {{"s", 10.0}}, {}};
-  c.depth = 10;
-  return c;
-}
-OceanCase phillips(int n = 64) {
-  OceanCase c = base_case(n, 200);
-  c.spectrum = {"phillips", {{"amplitude", 3e-4}, {"wind_speed", 12.0}, {"small_wave_cutoff", 0.5}}, {}};
-  return c;
-}
-OceanCase pierson_moskowitz(int n = 64) {
-  OceanCase c = base_case(n, 400);
-  c.spectrum = {"pierson-moskowitz", {{"u19_5", 15.0}}, {}};
-  c.spreading = {"cos2s", {{"s", 4.0}}, {}};
-  return c;
-}
+OceanCase jonswap_deep(int n = 64) { return builtin("jonswap_deep", n); }
+OceanCase tma_shallow(int n = 64) { return builtin("tma_10m", n); }
 
 std::string failures(const OceanCheckReport& report) {
   std::string out;
@@ -181,10 +155,11 @@ TEST_P(RightSurfaces, PassEveryCheckFromBothImplementations) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltInCases, RightSurfaces,
-                         ::testing::Values(NamedCase{"jonswap_deep", jonswap_deep()},
-                                           NamedCase{"tma_10m", tma_shallow()},
-                                           NamedCase{"phillips", phillips()},
-                                           NamedCase{"pierson_moskowitz_cos2s", pierson_moskowitz()}),
+                         ::testing::Values(NamedCase{"jonswap_deep", builtin("jonswap_deep")},
+                                           NamedCase{"tma_10m", builtin("tma_10m")},
+                                           NamedCase{"phillips", builtin("phillips")},
+                                           NamedCase{"pierson_moskowitz_cos2s",
+                                                     builtin("pierson_moskowitz_cos2s")}),
                          [](const auto& info) { return info.param.name; });
 
 // ------------------------------------------------------------------ wrong surfaces fail
