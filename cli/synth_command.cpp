@@ -1,5 +1,325 @@
-// placeholder: being written
+// swell synth (--case FILE | --model M [params]) [--spreading S [params]] --impl NAME --n N
+//             [--ny N] --length L [--length-y L] [--seed S] [--frames F --dt DT] [--t0 T]
+//             [--depth H] [--gravity G] [--wind-dir DEG] [--choppiness C] [--loop-period T]
+//             [--precision fp32|fp64] [--format exr|npy|tiff] --out DIR [--json FILE|-]
+//
+// Synthesizes the frames of an ocean case (docs/conventions.md §Amplitudes) with one transform
+// backend and writes them to DIR (frame_0000.exr, …, docs/case_files.md) with DIR/case.toml, a
+// complete case file whose [input] section reads those frames back.
+//
+// With --case the case file gives everything and flags override it: --model replaces the
+// spectrum (model and parameters), --spreading the spreading model, a parameter flag sets that
+// one parameter of whichever model takes it, and --n/--length set both axes unless --ny/--length-y
+// are given. A non-phillips spectrum without a spreading model gets cos2s with s = 10.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <set>
+
 #include "commands.hpp"
+#include "swell/impls/synthesizer.hpp"
+#include "swell/reference/errors.hpp"
+#include "swell/reference/model_factory.hpp"
+#include "swell/validation/case_file.hpp"
+#include "swell/validation/frame_io.hpp"
+
 namespace swell::cli {
-Action add_synth_command(CLI::App& app) { return [] { return 2; }; }
+namespace {
+
+namespace fs = std::filesystem;
+using reference::Field;
+using reference::ModelSpec;
+
+// The spreading a directional spectrum gets when none is named (documented in --help and
+// docs/case_files.md): a moderately broad cos-2s.
+constexpr const char* kDefaultSpreading = "cos2s";
+constexpr double kDefaultSpreadingS = 10;
+
+std::string flag_of(const std::string& parameter) {
+  std::string flag = "--" + parameter;
+  for (auto& c : flag) c = c == '_' ? '-' : c;
+  return flag;
+}
+
+bool takes(const std::string& model, const std::string& parameter) {
+  if (model.empty()) return false;
+  for (const auto& info : reference::model_parameters(model)) {
+    if (info.name == parameter) return true;
+  }
+  return false;
+}
+
+std::string parameter_list(const std::string& model) {
+  std::string out;
+  for (const auto& info : reference::model_parameters(model)) {
+    if (info.name == "gravity" || info.name == "depth" || info.name == "wind_dir") continue;
+    out += (out.empty() ? "" : ", ") + flag_of(info.name);
+  }
+  return out.empty() ? "none" : out;
+}
+
+struct SynthOptions {
+  std::string case_file;
+  std::string model;
+  std::string spreading;
+  // Model parameters by name; the CLI::Option tells whether each was given.
+  std::map<std::string, double> numbers;
+  std::map<std::string, std::string> choices;
+  std::map<std::string, CLI::Option*> number_options, choice_options;
+
+  std::string impl;
+  int n = 0, ny = 0;
+  double length = 0, length_y = 0;
+  std::string seed;
+  int frames = 1;
+  double dt = 0, t0 = 0, gravity = 0, wind_dir = 0, choppiness = 0, loop_period = 0;
+  std::string depth;
+  std::map<std::string, CLI::Option*> given;  // flag name → option, for the case fields
+
+  std::string precision = "fp32";
+  std::string format = "exr";
+  std::string out;
+  std::string json;
+
+  bool has(const std::string& flag) const { return given.at(flag)->count() > 0; }
+};
+
+// CLI11 reads "-1" into a uint64 as 2⁶⁴ − 1; a seed is parsed here, digits only.
+std::uint64_t parse_seed(const std::string& text) {
+  std::uint64_t value = 0;
+  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || result.ec != std::errc() || result.ptr != text.data() + text.size()) {
+    throw InvalidInput("--seed: '" + text + "' is not an integer in 0…18446744073709551615");
+  }
+  return value;
+}
+
+double parse_depth(const std::string& text) {
+  if (text == "inf") return reference::kInfiniteDepth;
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size()) {
+    throw InvalidInput("--depth: '" + text + "' is not a depth in metres or inf");
+  }
+  return value;
+}
+
+// The case the flags (and the case file, if any) describe.
+validation::CaseFile build_case(const SynthOptions& o) {
+  validation::CaseFile c;
+  auto& ocean = c.ocean;
+  const bool from_file = !o.case_file.empty();
+  if (from_file) {
+    c = validation::read_case_file(o.case_file);
+  } else {
+    for (const auto& [flag, what] : {std::pair{"--model", "a spectrum model"},
+                                     std::pair{"--n", "the grid size"},
+                                     std::pair{"--length", "the patch size in m"}}) {
+      if (!o.has(flag)) {
+        throw InvalidInput(fmt::format("{} ({}) is required without --case", flag, what));
+      }
+    }
+  }
+
+  // Models: --model replaces the spectrum; phillips carries its own directionality.
+  if (o.has("--model")) {
+    ocean.spectrum = ModelSpec{o.model, {}, {}};
+    if (o.model == "phillips" && !o.has("--spreading")) ocean.spreading = ModelSpec{};
+  }
+  if (o.has("--spreading")) ocean.spreading = ModelSpec{o.spreading, {}, {}};
+  const bool default_spreading = ocean.spectrum.model != "phillips" && ocean.spreading.model.empty();
+  if (default_spreading) ocean.spreading.model = kDefaultSpreading;
+
+  // Parameters go to whichever model takes them.
+  auto route = [&](const std::string& name) -> ModelSpec& {
+    if (takes(ocean.spectrum.model, name)) return ocean.spectrum;
+    if (takes(ocean.spreading.model, name)) return ocean.spreading;
+    throw InvalidInput(fmt::format(
+        "{} is not a parameter of spectrum '{}' (takes {}){}", flag_of(name), ocean.spectrum.model,
+        parameter_list(ocean.spectrum.model),
+        ocean.spreading.model.empty()
+            ? std::string(" and there is no spreading model")
+            : fmt::format(" nor of spreading '{}' (takes {})", ocean.spreading.model,
+                          parameter_list(ocean.spreading.model))));
+  };
+  for (const auto& [name, option] : o.number_options) {
+    if (option->count()) route(name).numbers[name] = o.numbers.at(name);
+  }
+  for (const auto& [name, option] : o.choice_options) {
+    if (option->count()) route(name).choices[name] = o.choices.at(name);
+  }
+  if (default_spreading && !ocean.spreading.numbers.count("s")) {
+    ocean.spreading.numbers["s"] = kDefaultSpreadingS;
+  }
+
+  // Grid, time, physics, synthesis.
+  if (o.has("--n")) ocean.grid.nx = ocean.grid.ny = o.n;
+  if (o.has("--ny")) ocean.grid.ny = o.ny;
+  if (o.has("--length")) ocean.grid.lx = ocean.grid.ly = o.length;
+  if (o.has("--length-y")) ocean.grid.ly = o.length_y;
+  if (o.has("--frames")) ocean.frames = o.frames;
+  if (o.has("--dt")) ocean.dt = o.dt;
+  if (o.has("--t0")) ocean.t0 = o.t0;
+  if (o.has("--depth")) ocean.depth = parse_depth(o.depth);
+  if (o.has("--gravity")) ocean.gravity = o.gravity;
+  if (o.has("--wind-dir")) ocean.wind_dir_deg = o.wind_dir;
+  if (o.has("--choppiness")) ocean.choppiness = o.choppiness;
+  if (o.has("--loop-period")) ocean.loop_period = o.loop_period;
+  if (o.has("--seed")) ocean.seed = parse_seed(o.seed);
+  ocean.validate();
+  return c;
+}
+
+double rms(const std::vector<double>& values) {
+  double sum = 0;
+  for (double v : values) sum += v * v;
+  return values.empty() ? 0 : std::sqrt(sum / static_cast<double>(values.size()));
+}
+
+int run_synth(const SynthOptions& o) {
+  validation::CaseFile c = build_case(o);
+  const auto& ocean = c.ocean;
+  const auto precision = impls::precision_from_string(o.precision);
+  validation::FrameWriteOptions write_options;
+  write_options.format = validation::frame_format_from_string(o.format);
+  write_options.float64 =
+      precision == impls::Precision::f64 && write_options.format == validation::FrameFormat::npy;
+
+  const auto start = std::chrono::steady_clock::now();
+  impls::SynthesizerOptions options;
+  options.backend = o.impl;
+  options.precision = precision;
+  const impls::Synthesizer synthesizer(ocean, options);  // unknown backends name the valid ones
+
+  const bool quiet = o.json == "-";  // standard output carries the JSON only
+  const fs::path out(o.out);
+  if (!quiet) {
+    fmt::print("swell synth: {}; {} frame{}; {} {}; {} files in {}\n", ocean.describe(),
+               ocean.frames, ocean.frames == 1 ? "" : "s", o.impl, o.precision, o.format,
+               out.string());
+    if (precision == impls::Precision::f64 && !write_options.float64) {
+      fmt::print("note: {} frames store float32; use --format npy to keep fp64\n", o.format);
+    }
+  }
+  std::vector<fs::path> files;
+  for (int f = 0; f < ocean.frames; ++f) {
+    const reference::FieldFrame frame = synthesizer.frame(ocean.time(f));
+    const auto written = validation::write_frame(out, ocean.grid, frame, f, write_options);
+    files.insert(files.end(), written.begin(), written.end());
+    if (!quiet) {
+      const auto& h = frame.fields.at(Field::height);
+      const auto& j = frame.fields.at(Field::jacobian);
+      const double min_j = *std::min_element(j.begin(), j.end());
+      fmt::print("frame {:4d}  t = {:g} s  rms h = {:.4g} m (4σ = {:.4g} m)  min J = {:.4g}  "
+                 "→ {}{}\n",
+                 f, ocean.time(f), rms(h), 4 * rms(h), min_j, written.front().string(),
+                 written.size() > 1 ? fmt::format(" (+{} files)", written.size() - 1) : "");
+    }
+  }
+  std::vector<Field> fields(reference::kAllFields.begin(), reference::kAllFields.end());
+  c.input = validation::frame_input_spec(fields, write_options);
+  c.directory = out;
+  const fs::path case_path = out / "case.toml";
+  validation::write_case_file(case_path, c);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  if (!o.json.empty()) {
+    std::vector<std::string> names;
+    for (const auto& file : files) names.push_back(file.string());
+    const nlohmann::json document = {{"case", case_path.string()},
+                                     {"description", ocean.describe()},
+                                     {"impl", o.impl},
+                                     {"precision", o.precision},
+                                     {"format", o.format},
+                                     {"n", {ocean.grid.nx, ocean.grid.ny}},
+                                     {"frames", ocean.frames},
+                                     {"files", names},
+                                     {"seconds", seconds}};
+    write_json(o.json, document);
+    if (quiet) return 0;
+  }
+  fmt::print("wrote {} frame file{} and {} in {:.3g} s\n", files.size(), files.size() == 1 ? "" : "s",
+             case_path.string(), seconds);
+  return 0;
+}
+
+}  // namespace
+
+Action add_synth_command(CLI::App& app) {
+  auto o = std::make_shared<SynthOptions>();
+  const auto models = reference::frequency_model_names();
+  const auto spreadings = reference::spreading_model_names();
+  o->given["--case"] = app.add_option("--case", o->case_file,
+                                      "case file (docs/case_files.md); flags override it");
+  o->given["--model"] = app.add_option("--model", o->model, "spectrum model")
+                            ->check(CLI::IsMember(std::set<std::string>(models.begin(), models.end())));
+  o->given["--spreading"] =
+      app.add_option("--spreading", o->spreading,
+                     "spreading model (default for non-phillips spectra: cos2s with s = 10)")
+          ->check(CLI::IsMember(std::set<std::string>(spreadings.begin(), spreadings.end())));
+  // One flag per parameter any spectrum or spreading model takes; each goes to the model that
+  // takes it. gravity, depth and wind_dir are case-wide flags below.
+  std::set<std::string> seen = {"gravity", "depth", "wind_dir"};
+  std::vector<std::string> all = models;
+  all.insert(all.end(), spreadings.begin(), spreadings.end());
+  for (const auto& model : all) {
+    for (const auto& info : reference::model_parameters(model)) {
+      if (!seen.insert(info.name).second) continue;
+      const bool is_choice = info.unit.find('|') != std::string::npos;
+      const auto help = info.meaning + (info.unit.empty() ? "" : " [" + info.unit + "]");
+      if (is_choice) {
+        o->choice_options[info.name] = app.add_option(flag_of(info.name), o->choices[info.name], help);
+      } else {
+        o->number_options[info.name] = app.add_option(flag_of(info.name), o->numbers[info.name], help);
+      }
+    }
+  }
+  std::string names;
+  for (const auto& name : impls::backend_names()) names += (names.empty() ? "" : ", ") + name;
+  app.add_option("--impl", o->impl, "transform backend (" + names + ")")->required();
+  o->given["--n"] = app.add_option("--n", o->n, "samples along x (and y unless --ny)");
+  o->given["--ny"] = app.add_option("--ny", o->ny, "samples along y");
+  o->given["--length"] = app.add_option("--length", o->length, "patch size along x (and y unless --length-y) [m]");
+  o->given["--length-y"] = app.add_option("--length-y", o->length_y, "patch size along y [m]");
+  o->given["--seed"] = app.add_option("--seed", o->seed, "random seed, 0…2⁶⁴−1 (default 0)");
+  o->given["--frames"] = app.add_option("--frames", o->frames, "number of frames (default 1)");
+  o->given["--dt"] = app.add_option("--dt", o->dt, "time between frames [s]");
+  o->given["--t0"] = app.add_option("--t0", o->t0, "time of frame 0 [s] (default 0)");
+  o->given["--depth"] = app.add_option("--depth", o->depth, "water depth [m] or inf (default inf)");
+  o->given["--gravity"] = app.add_option("--gravity", o->gravity, "gravity [m/s²] (default 9.81)");
+  o->given["--wind-dir"] = app.add_option("--wind-dir", o->wind_dir,
+                                          "direction the waves travel toward, counter-clockwise "
+                                          "from +x [deg] (default 0)");
+  o->given["--choppiness"] = app.add_option("--choppiness", o->choppiness,
+                                            "λ: stored displacement is λD (default 1)");
+  o->given["--loop-period"] = app.add_option("--loop-period", o->loop_period,
+                                             "loop period [s]; 0 = none (default)");
+  app.add_option("--precision", o->precision, "synthesis precision (default fp32)")
+      ->check(CLI::IsMember({"fp32", "fp64"}));
+  app.add_option("--format", o->format, "frame files (default exr)")
+      ->check(CLI::IsMember({"exr", "npy", "tiff"}));
+  app.add_option("--out", o->out, "output directory (created if missing)")->required();
+  app.add_option("--json", o->json, "write JSON to FILE, or - for standard output");
+  app.footer(
+      "Without --case, --model, --n and --length are required. With --case, the case file gives "
+      "everything and flags override it (--model replaces the spectrum and its parameters, "
+      "--spreading the spreading model, a parameter flag sets one parameter). A spectrum other "
+      "than phillips with no spreading model gets cos2s with s = 10. Writes DIR/frame_0000.exr "
+      "(channels h sx sy dx dy J), or frame_0000_h.npy … (fp64 → float64 with --format npy), or "
+      ".tif, and DIR/case.toml, whose [input] reads them back. JSON: {case, description, impl, "
+      "precision, format, n, frames, files, seconds}.");
+  return [o] { return run_synth(*o); };
+}
+
 }  // namespace swell::cli

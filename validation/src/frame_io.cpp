@@ -1,1 +1,616 @@
-// placeholder: being written
+// Frames on disk (docs/case_files.md §Frames): EXR and TIFF through OpenImageIO, .npy through
+// npy.hpp, headerless .raw. Readers check everything against the case and name the file.
+#include "swell/validation/frame_io.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <complex>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "swell/reference/errors.hpp"
+#include "swell/validation/npy.hpp"
+
+namespace swell::validation {
+namespace {
+
+namespace fs = std::filesystem;
+using reference::Field;
+using reference::FieldFrame;
+using reference::FrameSequence;
+using reference::Grid;
+
+// Unit roundoff of the stored number types (conventions: the floor the checks cannot go below).
+constexpr double kHalfRoundoff = 0x1p-11;
+constexpr double kFloatRoundoff = 0x1p-24;
+constexpr double kDoubleRoundoff = 0x1p-53;
+
+// TIFF has no channel names; swell keeps them in the ImageDescription tag after this prefix.
+constexpr const char* kTiffChannelsPrefix = "swell channels:";
+
+enum class StoredFormat { exr, tiff, npy, raw };
+
+std::string lowercase(std::string text) {
+  for (auto& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+StoredFormat stored_format_of(const std::string& pattern, const std::string& origin) {
+  const std::string ext = lowercase(fs::path(pattern).extension().string());
+  if (ext == ".exr") return StoredFormat::exr;
+  if (ext == ".tif" || ext == ".tiff") return StoredFormat::tiff;
+  if (ext == ".npy") return StoredFormat::npy;
+  if (ext == ".raw") return StoredFormat::raw;
+  throw InvalidInput(fmt::format("{}: files = \"{}\" has extension '{}'; swell reads .exr, .tif, "
+                                 ".tiff, .npy and .raw frames",
+                                 origin, pattern, ext));
+}
+
+bool one_file_per_field(StoredFormat format) {
+  return format == StoredFormat::npy || format == StoredFormat::raw;
+}
+
+// A printf pattern with at most one integer conversion, taken apart.
+struct Pattern {
+  std::string before, after;  // literal text around the conversion (%% already unescaped)
+  bool has_conversion = false;
+  bool zero_pad = false;
+  int width = 0;
+};
+
+Pattern parse_pattern(const std::string& pattern) {
+  Pattern out;
+  std::string* text = &out.before;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] != '%') {
+      *text += pattern[i];
+      continue;
+    }
+    if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+      *text += '%';
+      ++i;
+      continue;
+    }
+    const std::size_t start = i++;
+    bool zero = false;
+    if (i < pattern.size() && pattern[i] == '0') {
+      zero = true;
+      ++i;
+    }
+    int width = 0;
+    while (i < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[i]))) {
+      width = width * 10 + (pattern[i] - '0');
+      if (width > 32) {
+        throw InvalidInput(fmt::format("file pattern \"{}\": field width above 32", pattern));
+      }
+      ++i;
+    }
+    if (i >= pattern.size() || (pattern[i] != 'd' && pattern[i] != 'i' && pattern[i] != 'u')) {
+      const std::string conversion = pattern.substr(start, std::min(i + 1, pattern.size()) - start);
+      throw InvalidInput(fmt::format("file pattern \"{}\": unsupported conversion '{}'; use one "
+                                     "integer conversion such as %04d (%% for a literal %)",
+                                     pattern, conversion));
+    }
+    if (out.has_conversion) {
+      throw InvalidInput(fmt::format("file pattern \"{}\" has more than one conversion; it takes "
+                                     "one integer, the frame index",
+                                     pattern));
+    }
+    out.has_conversion = true;
+    out.zero_pad = zero;
+    out.width = width;
+    text = &out.after;
+  }
+  return out;
+}
+
+std::string expand(const Pattern& p, int index) {
+  if (!p.has_conversion) return p.before;
+  std::string number = std::to_string(index);
+  if (static_cast<int>(number.size()) < p.width) {
+    number.insert(0, p.width - number.size(), p.zero_pad ? '0' : ' ');
+  }
+  return p.before + number + p.after;
+}
+
+std::string with_suffix(const std::string& file, const std::string& suffix) {
+  if (suffix.empty()) return file;
+  fs::path path(file);
+  const std::string name = path.stem().string() + "_" + suffix + path.extension().string();
+  return path.replace_filename(name).string();
+}
+
+double roundoff_of(OIIO::TypeDesc type) {
+  switch (type.basetype) {
+    case OIIO::TypeDesc::HALF: return kHalfRoundoff;
+    case OIIO::TypeDesc::FLOAT: return kFloatRoundoff;
+    case OIIO::TypeDesc::DOUBLE: return kDoubleRoundoff;
+    default: return 0;  // not a floating-point type
+  }
+}
+
+std::string describe_field(Field field, const std::string& channel) {
+  return fmt::format("{} ({})", reference::field_name(field), channel);
+}
+
+// NaN or ±Inf anywhere: the first bad sample, by (i, j) (i along x).
+void require_finite(const std::vector<double>& values, const Grid& grid, const std::string& file,
+                    const std::string& what) {
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const double v = values[k];
+    if (std::isfinite(v)) continue;
+    const std::size_t i = k % static_cast<std::size_t>(grid.nx);
+    const std::size_t j = k / static_cast<std::size_t>(grid.nx);
+    std::size_t count = 0;
+    for (double x : values) count += std::isfinite(x) ? 0 : 1;
+    throw InvalidInput(fmt::format("{}: {} is {} at (i, j) = ({}, {}) ({} non-finite value{} in "
+                                   "all); every value must be finite",
+                                   file, what, std::isnan(v) ? "NaN" : (v > 0 ? "+Inf" : "-Inf"),
+                                   i, j, count, count == 1 ? "" : "s"));
+  }
+}
+
+// ------------------------------------------------------------------ reading images
+
+// Channel index of each requested field in an image with these channel names.
+std::map<Field, int> locate_channels(const std::string& file, StoredFormat format,
+                                     const OIIO::ImageSpec& spec,
+                                     const std::map<Field, std::string>& channels) {
+  std::vector<std::string> names(spec.channelnames.begin(), spec.channelnames.end());
+  bool named_by_swell = false;
+  if (format == StoredFormat::tiff) {
+    const std::string description = spec.get_string_attribute("ImageDescription");
+    if (description.rfind(kTiffChannelsPrefix, 0) == 0) {
+      std::vector<std::string> stored;
+      std::istringstream words(description.substr(std::strlen(kTiffChannelsPrefix)));
+      for (std::string word; words >> word;) stored.push_back(word);
+      if (stored.size() == names.size()) {
+        names = stored;
+        named_by_swell = true;
+      }
+    }
+  }
+  auto list = [&] {
+    std::string out;
+    for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
+    return out;
+  };
+
+  std::map<Field, int> found;
+  for (const auto& [field, channel] : channels) {
+    const auto it = std::find(names.begin(), names.end(), channel);
+    if (it != names.end()) found[field] = static_cast<int>(it - names.begin());
+  }
+  if (found.size() == channels.size()) return found;
+
+  // A TIFF from another writer has no channel names (OpenImageIO calls them Y, or R, G, B,
+  // channel3, …): when none of the names match and the channel count equals the number of
+  // fields listed, the fields are taken by position in swell's order h, sx, sy, dx, dy, J.
+  if (format == StoredFormat::tiff && !named_by_swell && found.empty() &&
+      static_cast<int>(channels.size()) == spec.nchannels) {
+    int position = 0;
+    for (Field field : reference::kAllFields) {
+      if (channels.count(field)) found[field] = position++;
+    }
+    return found;
+  }
+  for (const auto& [field, channel] : channels) {
+    if (found.count(field)) continue;
+    throw InvalidInput(fmt::format("{}: missing channel '{}' for {} (the file has {} channel{}: "
+                                   "{})",
+                                   file, channel, reference::field_name(field), spec.nchannels,
+                                   spec.nchannels == 1 ? "" : "s", list()));
+  }
+  return found;  // unreachable: some field was missing
+}
+
+double read_image_frame(const fs::path& path, StoredFormat format, const Grid& grid,
+                        const std::map<Field, std::string>& channels, FieldFrame& frame) {
+  const std::string file = path.string();
+  // Keep the bytes of a TIFF with unassociated alpha as stored (no premultiplication).
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto input = OIIO::ImageInput::open(file, &config);
+  if (!input) {
+    std::string why = OIIO::geterror();
+    if (why.empty()) why = "unknown error";
+    throw InvalidInput(fmt::format("{}: cannot read the image: {}", file, why));
+  }
+  const OIIO::ImageSpec& spec = input->spec();
+  if (spec.deep) throw InvalidInput(file + ": deep images are not supported");
+  if (spec.width != grid.nx || spec.height != grid.ny || spec.depth != 1) {
+    throw InvalidInput(fmt::format("{}: wrong size: {}×{}{} pixels, the case's grid is {}×{} "
+                                   "([grid] n)",
+                                   file, spec.width, spec.height,
+                                   spec.depth != 1 ? fmt::format("×{}", spec.depth) : "", grid.nx,
+                                   grid.ny));
+  }
+  const auto located = locate_channels(file, format, spec, channels);
+  const std::size_t count = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny);
+  double roundoff = 0;
+  for (const auto& [field, index] : located) {
+    const std::string what = describe_field(field, spec.channelnames[index]);
+    const OIIO::TypeDesc type = spec.channelformat(index);
+    const double u = roundoff_of(type);
+    if (u == 0) {
+      throw InvalidInput(fmt::format("{}: channel '{}' for {} stores {} values; swell reads "
+                                     "floating-point channels (half, float, double)",
+                                     file, spec.channelnames[index], reference::field_name(field),
+                                     type.c_str()));
+    }
+    roundoff = std::max(roundoff, u);
+    std::vector<double> values(count);
+    // OpenImageIO's TIFF reader returns true for a strip it could not read, with the error
+    // pending (and garbage in the buffer): an error message counts as a failure too.
+    const bool ok = input->read_image(0, 0, index, index + 1, OIIO::TypeDesc::DOUBLE, values.data());
+    std::string why = input->geterror();
+    if (!ok || !why.empty()) {
+      if (why.empty()) why = "unknown error";
+      throw InvalidInput(fmt::format("{}: cannot read channel '{}' (truncated or corrupt file?): "
+                                     "{}",
+                                     file, spec.channelnames[index], why));
+    }
+    require_finite(values, grid, file, what);
+    frame.fields[field] = std::move(values);
+  }
+  input->close();
+  return roundoff;
+}
+
+// ------------------------------------------------------------------ reading arrays
+
+double read_npy_field(const fs::path& path, const Grid& grid, Field field, FieldFrame& frame) {
+  const std::string file = path.string();
+  const NpyArray array = read_npy(path);  // names the file and the problem
+  const std::vector<std::size_t> want = {static_cast<std::size_t>(grid.ny),
+                                         static_cast<std::size_t>(grid.nx)};
+  if (array.shape != want) {
+    throw InvalidInput(fmt::format("{}: wrong shape {}: the case's grid needs (ny, nx) = {} "
+                                   "([grid] n = [{}, {}])",
+                                   file, shape_string(array.shape), shape_string(want), grid.nx,
+                                   grid.ny));
+  }
+  const std::string what = reference::field_name(field);
+  std::vector<double> real, imaginary;
+  double roundoff = kDoubleRoundoff;
+  auto split = [&](const auto& values) {
+    real.reserve(values.size());
+    imaginary.reserve(values.size());
+    for (const auto& z : values) {
+      real.push_back(static_cast<double>(z.real()));
+      imaginary.push_back(static_cast<double>(z.imag()));
+    }
+  };
+  switch (array.dtype) {
+    case NpyArray::Dtype::f4: {
+      const auto values = array.values<float>();
+      real.assign(values.begin(), values.end());
+      roundoff = kFloatRoundoff;
+      break;
+    }
+    case NpyArray::Dtype::f8: real = array.values<double>(); break;
+    case NpyArray::Dtype::c8:
+      split(array.values<std::complex<float>>());
+      roundoff = kFloatRoundoff;
+      break;
+    case NpyArray::Dtype::c16: split(array.values<std::complex<double>>()); break;
+  }
+  require_finite(real, grid, file, what + (array.is_complex() ? " (real part)" : ""));
+  frame.fields[field] = std::move(real);
+  if (array.is_complex()) {
+    require_finite(imaginary, grid, file, what + " (imaginary part)");
+    frame.imaginary[field] = std::move(imaginary);
+  }
+  return roundoff;
+}
+
+double read_raw_field(const fs::path& path, const Grid& grid, Field field,
+                      const std::string& raw_type, FieldFrame& frame) {
+  const std::string file = path.string();
+  const bool is_double = raw_type == "float64";
+  if (!is_double && raw_type != "float32") {
+    throw InvalidInput(fmt::format("{}: raw_type \"{}\" is not float32 or float64", file, raw_type));
+  }
+  const std::size_t item = is_double ? 8 : 4;
+  const std::size_t count = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny);
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) throw InvalidInput(file + ": not a regular file");
+  const auto size = fs::file_size(path, error);
+  if (error) throw InvalidInput(file + ": cannot determine the file size: " + error.message());
+  if (size != count * item) {
+    throw InvalidInput(fmt::format("{}: wrong size: {} bytes, expected ny·nx·{} = {}·{}·{} = {} "
+                                   "({} little-endian, [grid] n = [{}, {}])",
+                                   file, size, item, grid.ny, grid.nx, item, count * item,
+                                   raw_type, grid.nx, grid.ny));
+  }
+  std::ifstream stream(path, std::ios::binary);
+  std::vector<unsigned char> bytes(count * item);
+  if (!stream || !stream.read(reinterpret_cast<char*>(bytes.data()),
+                              static_cast<std::streamsize>(bytes.size()))) {
+    throw InvalidInput(file + ": read error");
+  }
+  // The bytes are little-endian, as the machine (npy.hpp asserts it).
+  std::vector<double> values(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    if (is_double) {
+      std::memcpy(&values[k], bytes.data() + k * 8, 8);
+    } else {
+      float x;
+      std::memcpy(&x, bytes.data() + k * 4, 4);
+      values[k] = x;
+    }
+  }
+  require_finite(values, grid, file, reference::field_name(field));
+  frame.fields[field] = std::move(values);
+  return is_double ? kDoubleRoundoff : kFloatRoundoff;
+}
+
+// ------------------------------------------------------------------ writing
+
+std::string extension_of(FrameFormat format) {
+  switch (format) {
+    case FrameFormat::exr: return ".exr";
+    case FrameFormat::npy: return ".npy";
+    case FrameFormat::tiff: return ".tif";
+  }
+  return "";
+}
+
+constexpr const char* kWritePattern = "frame_%04d";
+
+std::vector<fs::path> write_image_frame(const fs::path& path, FrameFormat format, const Grid& grid,
+                                        const std::vector<Field>& fields, const FieldFrame& frame) {
+  const std::string file = path.string();
+  auto output = OIIO::ImageOutput::create(file);
+  if (!output) {
+    throw InvalidInput(fmt::format("{}: cannot write: {}", file, OIIO::geterror()));
+  }
+  const int channels = static_cast<int>(fields.size());
+  OIIO::ImageSpec spec(grid.nx, grid.ny, channels, OIIO::TypeDesc::FLOAT);
+  spec.channelnames.clear();
+  std::string names;
+  for (Field field : fields) {
+    spec.channelnames.push_back(reference::channel_name(field));
+    names += " " + reference::channel_name(field);
+  }
+  spec.alpha_channel = -1;  // no channel is alpha: nothing may be premultiplied
+  spec.attribute("compression", "zip");  // lossless in both formats
+  if (format == FrameFormat::tiff) spec.attribute("ImageDescription", kTiffChannelsPrefix + names);
+  spec.attribute("Software", "swell");
+  if (!output->open(file, spec)) {
+    throw InvalidInput(fmt::format("{}: cannot write: {}", file, output->geterror()));
+  }
+  // Interleaved float rows, a block at a time, so that a large frame never needs a second copy.
+  const std::size_t nx = static_cast<std::size_t>(grid.nx);
+  const int rows_per_block = std::max(1, static_cast<int>((1u << 20) / (nx * fields.size())));
+  std::vector<float> block;
+  for (int y0 = 0; y0 < grid.ny; y0 += rows_per_block) {
+    const int y1 = std::min(grid.ny, y0 + rows_per_block);
+    block.assign(static_cast<std::size_t>(y1 - y0) * nx * fields.size(), 0.0f);
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      const auto& values = frame.fields.at(fields[c]);
+      for (int y = y0; y < y1; ++y) {
+        for (std::size_t x = 0; x < nx; ++x) {
+          block[((y - y0) * nx + x) * fields.size() + c] =
+              static_cast<float>(values[static_cast<std::size_t>(y) * nx + x]);
+        }
+      }
+    }
+    if (!output->write_scanlines(y0, y1, 0, OIIO::TypeDesc::FLOAT, block.data())) {
+      throw InvalidInput(fmt::format("{}: write failed: {}", file, output->geterror()));
+    }
+  }
+  if (!output->close()) {
+    throw InvalidInput(fmt::format("{}: write failed: {}", file, output->geterror()));
+  }
+  return {path};
+}
+
+template <typename Real>
+NpyArray npy_of(const Grid& grid, const std::vector<double>& real, const std::vector<double>* imaginary) {
+  const std::vector<std::size_t> shape = {static_cast<std::size_t>(grid.ny),
+                                          static_cast<std::size_t>(grid.nx)};
+  if (imaginary) {
+    std::vector<std::complex<Real>> values(real.size());
+    for (std::size_t k = 0; k < real.size(); ++k) {
+      values[k] = {static_cast<Real>(real[k]), static_cast<Real>((*imaginary)[k])};
+    }
+    return NpyArray::from_values(shape, values);
+  }
+  std::vector<Real> values(real.begin(), real.end());
+  return NpyArray::from_values(shape, values);
+}
+
+}  // namespace
+
+FrameFormat frame_format_from_string(const std::string& name) {
+  if (name == "exr") return FrameFormat::exr;
+  if (name == "npy") return FrameFormat::npy;
+  if (name == "tiff" || name == "tif") return FrameFormat::tiff;
+  throw InvalidInput("unknown frame format '" + name + "'; valid: exr, npy, tiff");
+}
+
+std::string to_string(FrameFormat format) {
+  switch (format) {
+    case FrameFormat::exr: return "exr";
+    case FrameFormat::npy: return "npy";
+    case FrameFormat::tiff: return "tiff";
+  }
+  return "?";
+}
+
+std::string frame_file_name(const std::string& pattern, int index, const std::string& suffix) {
+  return with_suffix(expand(parse_pattern(pattern), index), suffix);
+}
+
+InputSpec frame_input_spec(const std::vector<Field>& fields, const FrameWriteOptions& options) {
+  InputSpec spec;
+  spec.files = std::string(kWritePattern) + extension_of(options.format);
+  for (Field field : fields) spec.channels[field] = reference::channel_name(field);
+  return spec;
+}
+
+std::vector<fs::path> write_frame(const fs::path& directory, const Grid& grid,
+                                  const FieldFrame& frame, int index,
+                                  const FrameWriteOptions& options) {
+  if (index < 0) throw InvalidInput(fmt::format("frame index {} is negative", index));
+  if (frame.fields.empty()) throw InvalidInput(fmt::format("frame {} has no fields to write", index));
+  const std::size_t count = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny);
+  std::vector<Field> fields;
+  for (Field field : reference::kAllFields) {
+    const auto it = frame.fields.find(field);
+    if (it == frame.fields.end()) continue;
+    if (it->second.size() != count) {
+      throw InvalidInput(fmt::format("frame {}: {} holds {} values, the {}×{} grid needs {}", index,
+                                     reference::field_name(field), it->second.size(), grid.nx,
+                                     grid.ny, count));
+    }
+    const auto im = frame.imaginary.find(field);
+    if (im != frame.imaginary.end() && im->second.size() != count) {
+      throw InvalidInput(fmt::format("frame {}: the imaginary part of {} holds {} values, the "
+                                     "{}×{} grid needs {}",
+                                     index, reference::field_name(field), im->second.size(),
+                                     grid.nx, grid.ny, count));
+    }
+    fields.push_back(field);
+  }
+  if (options.format != FrameFormat::npy) {
+    if (options.float64) {
+      throw InvalidInput("float64 frames are written as .npy only (EXR and TIFF frames are "
+                         "float32)");
+    }
+    if (!frame.imaginary.empty()) {
+      throw InvalidInput(fmt::format("frame {} carries imaginary parts, which {} channels cannot "
+                                     "hold; write .npy (complex) instead",
+                                     index, to_string(options.format)));
+    }
+  }
+  std::error_code error;
+  fs::create_directories(directory, error);
+  if (error) {
+    throw InvalidInput(fmt::format("{}: cannot create the directory: {}", directory.string(),
+                                   error.message()));
+  }
+
+  const std::string name = frame_file_name(std::string(kWritePattern) + extension_of(options.format), index);
+  if (options.format != FrameFormat::npy) {
+    return write_image_frame(directory / name, options.format, grid, fields, frame);
+  }
+  std::vector<fs::path> written;
+  for (Field field : fields) {
+    const fs::path path = directory / with_suffix(name, reference::channel_name(field));
+    const auto im = frame.imaginary.find(field);
+    const std::vector<double>* imaginary = im == frame.imaginary.end() ? nullptr : &im->second;
+    const auto& real = frame.fields.at(field);
+    write_npy(path, options.float64 ? npy_of<double>(grid, real, imaginary)
+                                    : npy_of<float>(grid, real, imaginary));
+    written.push_back(path);
+  }
+  return written;
+}
+
+InputSpec write_frames(const fs::path& directory, const FrameSequence& frames,
+                       const FrameWriteOptions& options) {
+  if (frames.frames.empty()) throw InvalidInput("no frames to write");
+  std::vector<Field> fields;
+  for (const auto& [field, values] : frames.frames.front().fields) fields.push_back(field);
+  for (std::size_t f = 0; f < frames.frames.size(); ++f) {
+    const auto& frame = frames.frames[f];
+    std::vector<Field> here;
+    for (const auto& [field, values] : frame.fields) here.push_back(field);
+    if (here != fields) {
+      throw InvalidInput(fmt::format("frame {} has other fields than frame 0; every frame must "
+                                     "carry the same fields",
+                                     f));
+    }
+    write_frame(directory, frames.grid, frame, static_cast<int>(f), options);
+  }
+  return frame_input_spec(fields, options);
+}
+
+reference::FrameSequence read_frames(const CaseFile& case_file, const std::string& pattern_override) {
+  const auto& ocean = case_file.ocean;
+  const auto& input = case_file.input;
+  const std::string origin = pattern_override.empty() ? "[input] files" : "--input";
+  if (pattern_override.empty() && input.files.empty()) {
+    throw InvalidInput("the case has no frames to read: give [input] files = \"frame_%04d.exr\" "
+                       "(or an input pattern on the command line)");
+  }
+  if (input.channels.empty()) {
+    throw InvalidInput("the case's [input] names no field: give at least one of height, slope_x, "
+                       "slope_y, disp_x, disp_y, jacobian with its channel or file suffix");
+  }
+  const std::string pattern =
+      pattern_override.empty() ? (case_file.directory / input.files).string() : pattern_override;
+  const StoredFormat format = stored_format_of(pattern, origin);
+  Pattern parsed;
+  try {
+    parsed = parse_pattern(pattern);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(origin + ": " + e.what());
+  }
+  if (!parsed.has_conversion && ocean.frames > 1) {
+    throw InvalidInput(fmt::format("{}: \"{}\" has no frame number (such as %04d) but the case has "
+                                   "{} frames ([time] frames)",
+                                   origin, pattern, ocean.frames));
+  }
+  const Grid& grid = ocean.grid;
+  auto file_of = [&](int f, Field field) {
+    return fs::path(with_suffix(expand(parsed, f),
+                                one_file_per_field(format) ? input.channels.at(field) : ""));
+  };
+
+  FrameSequence sequence;
+  sequence.grid = grid;
+  double roundoff = 0;
+  const Field first_field = input.channels.begin()->first;
+  for (int f = 0; f < ocean.frames; ++f) {
+    FieldFrame frame;
+    frame.time = ocean.time(f);
+    for (const auto& [field, channel] : input.channels) {
+      if (!one_file_per_field(format) && field != first_field) break;  // one file for all fields
+      const fs::path path = file_of(f, field);
+      std::error_code error;
+      if (!fs::exists(path, error)) {
+        throw InvalidInput(fmt::format("{}: missing frame file (frame {} of {}{})", path.string(), f,
+                                       ocean.frames,
+                                       one_file_per_field(format)
+                                           ? ", " + reference::field_name(field)
+                                           : std::string()));
+      }
+      if (fs::is_directory(path, error)) {
+        throw InvalidInput(path.string() + ": is a directory, not a frame file");
+      }
+      double u = 0;
+      switch (format) {
+        case StoredFormat::exr:
+        case StoredFormat::tiff: u = read_image_frame(path, format, grid, input.channels, frame); break;
+        case StoredFormat::npy: u = read_npy_field(path, grid, field, frame); break;
+        case StoredFormat::raw: u = read_raw_field(path, grid, field, input.raw_type, frame); break;
+      }
+      roundoff = std::max(roundoff, u);
+    }
+    sequence.frames.push_back(std::move(frame));
+  }
+  // More frames on disk than the case says: the case and the files disagree.
+  if (parsed.has_conversion) {
+    const fs::path next = file_of(ocean.frames, first_field);
+    std::error_code error;
+    if (fs::exists(next, error)) {
+      throw InvalidInput(fmt::format("{}: a frame beyond the case's {} ([time] frames = {}): the "
+                                     "files hold more frames than the case says",
+                                     next.string(), ocean.frames, ocean.frames));
+    }
+  }
+  sequence.unit_roundoff = roundoff;
+  return sequence;
+}
+
+}  // namespace swell::validation

@@ -1,1 +1,284 @@
-// placeholder: being written
+// The ocean commands end to end through the built `swell` binary: `swell synth` (frames and
+// case.toml that read back to the synthesizer's own frames), then `swell fit` and `swell check
+// ocean`. Bad input exits 2 with the problem named (DESIGN §5b).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <bit>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli_support.hpp"
+#include "swell/impls/synthesizer.hpp"
+#include "swell/validation/case_file.hpp"
+#include "swell/validation/frame_io.hpp"
+#include "swell/validation/npy.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using swell::reference::Field;
+using swell::reference::FrameSequence;
+using CliRun = swell::test::Run;  // (inside a fixture, Run is testing::Test::Run)
+using swell::test::swell;
+
+bool contains(const std::string& text, const std::string& fragment) {
+  return text.find(fragment) != std::string::npos;
+}
+
+// A fresh directory per test, removed afterwards.
+class OceanCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string(info->test_suite_name()) + "_" + info->name();
+    for (auto& c : name) c = (c == '/') ? '_' : c;
+    dir_ = fs::temp_directory_path() / ("swell_ocean_cli_test_" + std::to_string(::getpid()) + "_" + name);
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  fs::path dir_;
+};
+
+// ==================================================================== swell synth
+
+// The frames `swell synth` wrote equal, bit for bit, those the synthesizer makes of the case it
+// wrote (stored as float32 unless fp64 went to .npy).
+void expect_frames_of_the_case(const fs::path& out, const std::string& impl,
+                               swell::impls::Precision precision, bool stored_float32) {
+  const auto case_file = swell::validation::read_case_file(out / "case.toml");
+  const FrameSequence read = swell::validation::read_frames(case_file);
+  swell::impls::SynthesizerOptions options;
+  options.backend = impl;
+  options.precision = precision;
+  const FrameSequence want = swell::impls::Synthesizer(case_file.ocean, options).frames();
+  ASSERT_EQ(read.frames.size(), want.frames.size());
+  EXPECT_EQ(read.unit_roundoff, stored_float32 ? 0x1p-24 : 0x1p-53);
+  for (std::size_t f = 0; f < want.frames.size(); ++f) {
+    EXPECT_EQ(read.frames[f].time, want.frames[f].time);
+    ASSERT_EQ(read.frames[f].fields.size(), 6u) << "frame " << f;
+    for (const auto& [field, values] : want.frames[f].fields) {
+      const auto& got = read.frames[f].fields.at(field);
+      ASSERT_EQ(got.size(), values.size());
+      std::size_t differ = 0;
+      for (std::size_t k = 0; k < values.size(); ++k) {
+        const double expected = stored_float32 ? static_cast<double>(static_cast<float>(values[k])) : values[k];
+        differ += std::bit_cast<std::uint64_t>(got[k]) != std::bit_cast<std::uint64_t>(expected);
+      }
+      EXPECT_EQ(differ, 0u) << swell::reference::field_name(field) << " frame " << f;
+    }
+  }
+}
+
+struct SynthFormat {
+  std::string format, precision;
+};
+
+void PrintTo(const SynthFormat& p, std::ostream* os) { *os << p.format << " " << p.precision; }
+
+class SynthFormats : public OceanCli, public ::testing::WithParamInterface<SynthFormat> {};
+
+TEST_P(SynthFormats, WritesFramesAndACaseThatReadsThemBack) {
+  const auto& p = GetParam();
+  const CliRun run = swell("synth --model jonswap --hs 2.5 --tp 7 --gamma 2 --spreading mitsuyasu "
+                        "--s-max 12 --impl fftw --n 32 --ny 16 --length 120 --length-y 70 "
+                        "--frames 3 --dt 0.5 --t0 2 --seed 11 --wind-dir 20 --choppiness 0.8 "
+                        "--precision " + p.precision + " --format " + p.format + " --out " + path("out"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "frame    2")) << run.output;  // one line per frame
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "case.toml"));
+  if (p.format == "npy") {
+    EXPECT_TRUE(fs::exists(dir_ / "out" / "frame_0002_J.npy"));
+    EXPECT_EQ(swell::validation::read_npy(dir_ / "out" / "frame_0000_h.npy").dtype,
+              p.precision == "fp64" ? swell::validation::NpyArray::Dtype::f8
+                                    : swell::validation::NpyArray::Dtype::f4);
+  } else {
+    EXPECT_TRUE(fs::exists(dir_ / "out" / (p.format == "exr" ? "frame_0002.exr" : "frame_0002.tif")));
+  }
+
+  // The case holds what the flags said.
+  const auto c = swell::validation::read_case_file(dir_ / "out" / "case.toml");
+  EXPECT_EQ(c.ocean.grid.nx, 32);
+  EXPECT_EQ(c.ocean.grid.ny, 16);
+  EXPECT_EQ(c.ocean.grid.lx, 120.0);
+  EXPECT_EQ(c.ocean.grid.ly, 70.0);
+  EXPECT_EQ(c.ocean.frames, 3);
+  EXPECT_EQ(c.ocean.dt, 0.5);
+  EXPECT_EQ(c.ocean.t0, 2.0);
+  EXPECT_EQ(c.ocean.seed, 11u);
+  EXPECT_EQ(c.ocean.wind_dir_deg, 20.0);
+  EXPECT_EQ(c.ocean.choppiness, 0.8);
+  EXPECT_EQ(c.ocean.spectrum.model, "jonswap");
+  EXPECT_EQ(c.ocean.spectrum.numbers,
+            (std::map<std::string, double>{{"hs", 2.5}, {"tp", 7.0}, {"gamma", 2.0}}));
+  EXPECT_EQ(c.ocean.spreading.model, "mitsuyasu");
+  EXPECT_EQ(c.ocean.spreading.numbers, (std::map<std::string, double>{{"s_max", 12.0}}));
+  EXPECT_EQ(c.input.channels.size(), 6u);
+
+  const auto precision = p.precision == "fp64" ? swell::impls::Precision::f64 : swell::impls::Precision::f32;
+  expect_frames_of_the_case(dir_ / "out", "fftw", precision, !(p.precision == "fp64" && p.format == "npy"));
+}
+
+INSTANTIATE_TEST_SUITE_P(Synth, SynthFormats,
+                         ::testing::Values(SynthFormat{"exr", "fp32"}, SynthFormat{"npy", "fp32"},
+                                           SynthFormat{"tiff", "fp32"}, SynthFormat{"npy", "fp64"},
+                                           SynthFormat{"exr", "fp64"}),
+                         [](const auto& info) { return info.param.format + "_" + info.param.precision; });
+
+TEST_F(OceanCli, SynthFromACaseFileWithOverrides) {
+  {
+    std::ofstream(path("phillips.toml")) << R"([grid]
+n = [64, 64]
+length = [500.0, 500.0]
+[time]
+dt = 1.0
+frames = 5
+[spectrum]
+model = "phillips"
+scale = "free"
+amplitude = 2e-4
+wind_speed = 12.0
+wind_dir_deg = 135.0
+[synthesis]
+seed = 99
+choppiness = 1.2
+)";
+  }
+  const CliRun run = swell("synth --case " + path("phillips.toml") +
+                        " --impl radix2 --n 16 --frames 2 --seed 5 --wind-speed 9 --out " + path("out"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto c = swell::validation::read_case_file(dir_ / "out" / "case.toml");
+  EXPECT_EQ(c.ocean.grid.nx, 16);  // --n sets both axes
+  EXPECT_EQ(c.ocean.grid.ny, 16);
+  EXPECT_EQ(c.ocean.grid.lx, 500.0);  // from the file
+  EXPECT_EQ(c.ocean.frames, 2);
+  EXPECT_EQ(c.ocean.dt, 1.0);
+  EXPECT_EQ(c.ocean.seed, 5u);
+  EXPECT_EQ(c.ocean.choppiness, 1.2);
+  EXPECT_EQ(c.ocean.wind_dir_deg, 135.0);
+  EXPECT_EQ(c.scale, swell::validation::SpectrumScale::free);
+  EXPECT_EQ(c.ocean.spectrum.model, "phillips");
+  EXPECT_EQ(c.ocean.spectrum.numbers.at("wind_speed"), 9.0);
+  EXPECT_EQ(c.ocean.spectrum.numbers.at("amplitude"), 2e-4);
+  EXPECT_TRUE(c.ocean.spreading.model.empty());
+  expect_frames_of_the_case(dir_ / "out", "radix2", swell::impls::Precision::f32, true);
+}
+
+TEST_F(OceanCli, SynthModelOverrideKeepsOrDropsTheSpreading) {
+  {
+    std::ofstream(path("case.toml")) << R"([grid]
+n = [16, 16]
+length = [100.0, 100.0]
+[spectrum]
+model = "phillips"
+amplitude = 1e-3
+wind_speed = 10.0
+)";
+  }
+  // Phillips → jonswap: there is no spreading to keep, so the default cos2s s = 10 applies.
+  CliRun run = swell("synth --case " + path("case.toml") + " --model jonswap --hs 1 --tp 5 --impl fftw --out " +
+                  path("a"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  auto c = swell::validation::read_case_file(dir_ / "a" / "case.toml");
+  EXPECT_EQ(c.ocean.spectrum.numbers, (std::map<std::string, double>{{"hs", 1.0}, {"tp", 5.0}}));
+  EXPECT_EQ(c.ocean.spreading.model, "cos2s");
+  EXPECT_EQ(c.ocean.spreading.numbers, (std::map<std::string, double>{{"s", 10.0}}));
+
+  // jonswap + cos2s → phillips without --spreading: the spreading goes.
+  run = swell("synth --case " + path("a/case.toml") + " --model phillips --amplitude 1e-3 --wind-speed 8 "
+              "--impl fftw --out " + path("b"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  c = swell::validation::read_case_file(dir_ / "b" / "case.toml");
+  EXPECT_EQ(c.ocean.spectrum.model, "phillips");
+  EXPECT_TRUE(c.ocean.spreading.model.empty());
+
+  // A spreading parameter flag alone changes that parameter of the case's spreading.
+  run = swell("synth --case " + path("a/case.toml") + " --s 3.5 --impl fftw --out " + path("c"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  c = swell::validation::read_case_file(dir_ / "c" / "case.toml");
+  EXPECT_EQ(c.ocean.spreading.numbers.at("s"), 3.5);
+  EXPECT_EQ(c.ocean.spectrum.numbers.at("hs"), 1.0);
+}
+
+TEST_F(OceanCli, SynthJson) {
+  const CliRun run = swell("synth --model bretschneider --hs 2 --tp 6 --impl naive --n 8 --length 50 "
+                        "--frames 2 --dt 0.25 --out " + path("out") + " --json " + path("synth.json"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::ifstream file(path("synth.json"));
+  const auto document = nlohmann::json::parse(file);
+  EXPECT_EQ(document.at("frames"), 2);
+  EXPECT_EQ(document.at("case"), path("out") + "/case.toml");
+  ASSERT_EQ(document.at("files").size(), 2u);
+  EXPECT_EQ(document.at("files")[1], path("out") + "/frame_0001.exr");
+  EXPECT_GE(document.at("seconds").get<double>(), 0.0);
+  EXPECT_EQ(document.at("impl"), "naive");
+
+  // --json -: standard output is the JSON document alone.
+  const CliRun quiet = swell("synth --model bretschneider --hs 2 --tp 6 --impl naive --n 8 --length 50 "
+                          "--format npy --out " + path("out2") + " --json -");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.output;
+  const auto parsed = nlohmann::json::parse(quiet.output);
+  EXPECT_EQ(parsed.at("files").size(), 6u);  // six fields, one .npy each
+  EXPECT_EQ(parsed.at("format"), "npy");
+}
+
+TEST_F(OceanCli, SynthBadInputExitsTwoNamingTheProblem) {
+  {
+    std::ofstream(path("bad.toml")) << "[grid]\nn = \"64\"\nlength = [1.0, 1.0]\n";
+  }
+  const std::string base = "synth --impl fftw --out " + path("out") + " ";
+  const std::string jonswap = "--model jonswap --hs 3 --tp 8 ";
+  const std::string grid = "--n 16 --length 100 ";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"--model jonswap --hs 3 --tp 8 --length 100", {"--n", "required without --case"}},
+      {"--hs 3 --tp 8 --n 16 --length 100", {"--model", "required without --case"}},
+      {"--model jonswop --n 16 --length 100", {"--model", "jonswop"}},
+      {"--model jonswap --n 16 --length 100", {"jonswap", "missing parameters"}},
+      {jonswap + grid + "--s-max 3", {"--s-max", "not a parameter", "cos2s"}},
+      {"--model phillips --amplitude 1e-3 --wind-speed 10 --n 16 --length 100 --spreading cos2s",
+       {"phillips", "no spreading model"}},
+      {jonswap + "--n 0 --length 100", {"nx", "≥ 1", "0"}},
+      {jonswap + "--n 16 --length -5", {"-5"}},
+      {jonswap + grid + "--depth -3", {"depth", "-3"}},
+      {jonswap + grid + "--depth shallow", {"--depth", "shallow"}},
+      {jonswap + grid + "--frames 4", {"dt", "more than one frame"}},
+      {jonswap + grid + "--seed -1", {"--seed", "-1"}},
+      {jonswap + grid + "--format bmp", {"--format", "bmp"}},
+      {jonswap + grid + "--precision fp16", {"--precision", "fp16"}},
+      {"--model jonswap --hs -1 --tp 8 " + grid, {"hs", "-1"}},
+      {"--case " + path("missing.toml"), {"missing.toml", "no such case file"}},
+      {"--case " + path("bad.toml"), {"bad.toml:2:", "[grid] n"}},
+  };
+  for (const auto& [args, fragments] : cases) {
+    SCOPED_TRACE(args);
+    const CliRun run = swell(base + args);
+    EXPECT_EQ(run.exit_code, 2) << run.output;
+    for (const auto& fragment : fragments) {
+      EXPECT_TRUE(contains(run.output, fragment)) << "'" << fragment << "' not in: " << run.output;
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "case.toml")) << "a case was written for bad input";
+  }
+  // Unknown backend and a size the backend cannot do.
+  CliRun run = swell("synth --impl nope --out " + path("out") + " " + jonswap + grid);
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, "nope")) << run.output;
+  run = swell("synth --impl radix2 --out " + path("out") + " --model jonswap --hs 3 --tp 8 --n 12 --length 100");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, "radix2")) << run.output;
+  EXPECT_TRUE(contains(run.output, "12")) << run.output;
+  // Without --out.
+  run = swell("synth --impl fftw " + jonswap + grid);
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, "--out")) << run.output;
+}
+
+// ==================================================================== end of swell synth
+
+}  // namespace

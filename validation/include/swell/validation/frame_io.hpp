@@ -4,8 +4,14 @@
 //   exr:  DIR/frame_0000.exr, … one file per frame, float32 channels h, sx, sy, dx, dy, J
 //         (reference::channel_name), rows = y (row 0 is j = 0), columns = x.
 //   npy:  DIR/frame_0000_h.npy, DIR/frame_0000_dx.npy, … one file per field and frame,
-//         shape (ny, nx), float32 (fp32 synthesis) or float64.
+//         shape (ny, nx), float32 (fp32 synthesis) or float64; complex64/complex128 when the
+//         frame carries imaginary parts (read back into FieldFrame::imaginary).
+//   tiff: as exr, DIR/frame_0000.tif, float32; the channel names, which TIFF cannot hold, go
+//         into the ImageDescription tag ("swell channels: h sx …").
+//   raw:  read only: headerless little-endian float32 or float64 ([input] raw_type), ny·nx
+//         values, one file per field and frame named as for npy.
 //
+// docs/case_files.md gives the naming rules and how channels are found in each format.
 // Readers check everything against the case (sizes, channels, frame count, finite values) and
 // throw InvalidInput naming the file and the problem.
 #include <filesystem>
@@ -30,6 +36,25 @@ struct FrameWriteOptions {
 // that reads them back (files pattern and channels, relative to `directory`).
 InputSpec write_frames(const std::filesystem::path& directory,
                        const reference::FrameSequence& frames, const FrameWriteOptions& options);
+
+// Writes one frame, as write_frames writes frame `index` (the fields present in `frame`, each
+// grid.nx·grid.ny values); returns the files written. For `swell synth`, which writes frames as
+// it makes them.
+std::vector<std::filesystem::path> write_frame(const std::filesystem::path& directory,
+                                               const reference::Grid& grid,
+                                               const reference::FieldFrame& frame, int index,
+                                               const FrameWriteOptions& options);
+// The InputSpec that reads back what write_frame(s) write for these fields:
+// files "frame_%04d.exr" (or .npy, .tif) and each field's channel_name.
+InputSpec frame_input_spec(const std::vector<reference::Field>& fields,
+                           const FrameWriteOptions& options);
+
+// The file a pattern names for frame `index`: one printf integer conversion (%d, %4d, %04d, %i,
+// %u; %% is a literal %), and for one file per field (.npy, .raw) the suffix inserted before
+// the extension with an underscore: ("frame_%04d.npy", 3, "h") → "frame_0003_h.npy". A pattern
+// without a conversion names the same file for every frame. Throws InvalidInput for any other
+// conversion or more than one.
+std::string frame_file_name(const std::string& pattern, int index, const std::string& suffix = "");
 
 // Reads the frames a case file names (its [input] section), frame times from its [time]
 // section. `pattern_override`, when not empty, replaces input.files (relative to the current
