@@ -90,9 +90,14 @@ double WeightedExponentialSum::tail(double x, bool upper) const {
   // Lugannani–Rice is 0/0 at the mean: interpolate across a small neighbourhood there.
   const double guard = 1e-3 * sd;
   if (std::abs(x - mean_) < guard) {
-    const double below = tail(mean_ - guard, upper), above = tail(mean_ + guard, upper);
+    const double below = lugannani_rice(mean_ - guard, upper);
+    const double above = lugannani_rice(mean_ + guard, upper);
     return below + (above - below) * (x - (mean_ - guard)) / (2 * guard);
   }
+  return lugannani_rice(x, upper);
+}
+
+double WeightedExponentialSum::lugannani_rice(double x, bool upper) const {
   const double s = saddlepoint(x);
   double k2 = 0;
   for (double w : weights_) {
@@ -103,6 +108,10 @@ double WeightedExponentialSum::tail(double x, bool upper) const {
   const double q = s * std::sqrt(k2);
   const double phi = std::exp(-0.5 * r * r) / std::sqrt(2 * std::numbers::pi);
   const double correction = phi * (1 / r - 1 / q);
+  if (r == 0 || !std::isfinite(correction)) {  // rounding at the mean: the normal law there
+    const double z = (x - mean_) / std::sqrt(variance_);
+    return 0.5 * std::erfc((upper ? z : -z) / std::numbers::sqrt2);
+  }
   const double value = upper ? 0.5 * std::erfc(r / std::numbers::sqrt2) - correction
                              : 0.5 * std::erfc(-r / std::numbers::sqrt2) + correction;
   return std::clamp(value, 0.0, 1.0);

@@ -54,6 +54,25 @@ TEST(SamplingLaws, SaddlepointMatchesGammaForEqualWeights) {
   }
 }
 
+// Near the mean the formula is 0/0; every x there, however close, gives a finite, continuous
+// answer (a recursion at the guard's edge once overflowed the stack).
+TEST(SamplingLaws, SaddlepointIsContinuousThroughTheMean) {
+  std::vector<double> weights;
+  for (int i = 1; i <= 300; ++i) weights.push_back(1.0 / (1 + 0.01 * i * i));
+  const stats::WeightedExponentialSum law(weights);
+  const double sd = std::sqrt(law.variance());
+  double previous = 0;
+  for (int step = -2000; step <= 2000; ++step) {
+    const double x = law.mean() + step * 1e-6 * sd;
+    const double f = law.cdf(x);
+    ASSERT_TRUE(std::isfinite(f)) << step;
+    EXPECT_GE(f, previous - 1e-9) << step;
+    EXPECT_NEAR(f + law.survival(x), 1.0, 1e-6) << step;
+    previous = f;
+  }
+  EXPECT_NEAR(law.two_sided_p(law.quantile(0.5)), 1.0, 1e-6);  // the median, not the mean
+}
+
 // Unequal weights, the case of a real spectrum: against simulation.
 TEST(SamplingLaws, SaddlepointMatchesSimulationForUnequalWeights) {
   std::vector<double> weights;

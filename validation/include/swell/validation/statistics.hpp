@@ -31,8 +31,9 @@ class WeightedExponentialSum {
   double quantile(double p) const;  // x with P(X ≤ x) = p
 
  private:
-  // Lugannani–Rice for the lower (upper = false) or upper tail.
+  // The lower (upper = false) or upper tail; Lugannani–Rice away from the mean.
   double tail(double x, bool upper) const;
+  double lugannani_rice(double x, bool upper) const;
   double cumulant(double s) const;  // K(s) = −Σ log(1 − w s)
   double saddlepoint(double x) const;  // s with K'(s) = x
   std::vector<double> weights_;
