@@ -106,9 +106,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"spectrum --model jonswap --hs 1 --tp 5 --omega 2:1:4", "b > a"},
         BadInput{"spectrum --model jonswap --hs one --tp 5", "hs"},
         BadInput{"spectrum --hs 1 --tp 5", "model"},
-        BadInput{"check ocean --report-dir /tmp/swell-cli-test", "ocean"},
         BadInput{"check transforms --impl fftx --report-dir /tmp/swell-cli-test", "fftx"},
-        BadInput{"frobnicate", "frobnicate"}),
+        BadInput{"frobnicate", "frobnicate"},
+        BadInput{"check ocean --impl fftx --report-dir /tmp/swell-cli-test", "fftx"},
+        BadInput{"check ocean --alpha 0 --report-dir /tmp/swell-cli-test", "alpha"},
+        BadInput{"check ocean --n 8 --report-dir /tmp/swell-cli-test", "--n"}),
     [](const testing::TestParamInfo<BadInput>& info) {
       std::string name = std::to_string(info.index) + "_";
       for (char c : info.param.arguments) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
@@ -141,8 +143,37 @@ TEST(CliCheck, AllPassesAndWritesReports) {
       EXPECT_TRUE(row.contains(key)) << key;
     }
   }
+  // The ocean matrix: every exact backend × fp32/fp64 × the 4 built-in cases, all passing.
+  std::set<std::string> ocean_backends, ocean_cases;
+  ASSERT_EQ(doc.at("ocean").size(), 3u * 2u * 4u);
+  for (const auto& row : doc.at("ocean")) {
+    ocean_backends.insert(row.at("backend").get<std::string>());
+    ocean_cases.insert(row.at("case").get<std::string>());
+    EXPECT_TRUE(row.at("pass").get<bool>()) << row.dump();
+    EXPECT_EQ(row.at("failed"), 0) << row.dump();
+    EXPECT_GE(row.at("checks").size(), 20u);
+  }
+  EXPECT_EQ(ocean_backends, (std::set<std::string>{"naive", "radix2", "fftw"}));
+  EXPECT_EQ(ocean_cases, (std::set<std::string>{"jonswap_deep", "tma_10m", "phillips",
+                                                 "pierson_moskowitz_cos2s"}));
   EXPECT_TRUE(std::filesystem::exists(dir / "check_all.md"));
   std::filesystem::remove_all(dir);
+}
+
+// The ocean matrix of one backend, small and fast, with its table and JSON on stdout.
+TEST(CliCheck, OceanForOneBackendPrintsTheMatrix) {
+  const auto run = swell("check ocean --impl radix2 --n 32 --json - --report-dir /tmp/swell-cli-ocean");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto doc = nlohmann::json::parse(run.output.substr(run.output.find('{')));
+  ASSERT_EQ(doc.at("ocean").size(), 8u);
+  for (const auto& row : doc.at("ocean")) {
+    EXPECT_EQ(row.at("backend"), "radix2");
+    EXPECT_TRUE(row.at("pass").get<bool>()) << row.dump();
+  }
+  const auto text = swell("check ocean --impl fftw --n 32 --report-dir /tmp/swell-cli-ocean");
+  EXPECT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("dispersion"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("jonswap_deep"), std::string::npos) << text.output;
 }
 
 TEST(CliCheck, UnreadableDataDirectoryIsBadInput) {
