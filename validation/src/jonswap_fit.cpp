@@ -1,1 +1,667 @@
-// placeholder: being written
+// The JONSWAP fit by maximum Whittle likelihood (docs/fit.md).
+//
+// Model. For every energy-carrying k of a half plane, μ(k; θ) = ½ (Ψ(k) + Ψ(−k)) Δkx Δky with
+// Ψ = S(ω) D (dω/dk)/k. ω(k) is the same for k and −k, so μ factors into
+//     μ(k; θ) = S(ω_k; θ) · A_k,
+//     A_k = ½ (D(ω_k, θk − θw) + D(ω_k, θk + π − θw)) (dω/dk)/k Δk² · Φ(ω_k)
+// where A_k (spreading, dispersion, TMA depth factor Φ) does not depend on θ and is computed
+// once. S is JONSWAP normalized exactly (m0 = Hs²/16): with x = ω/ωp,
+//     S(ω) = (Hs²/16) · x⁻⁵ e^(−5/4 x⁻⁴) γ^r(x) / (ωp F(γ, σa, σb)),
+//     F = ∫₀^∞ x⁻⁵ e^(−5/4 x⁻⁴) γ^r(x) dx,   r = exp(−(x − 1)² / (2σ²)),  σ = σa (x ≤ 1), σb,
+// so log μ_k = log A_k − 5 log ω_k + [2 log Hs − log 16 + log(Tp/2π) − 5 log(Tp/2π) − log F]
+//              − 5/4 x⁻⁴ + r log γ:  per k one division and one exponential (and e^(−log μ)
+//              in the likelihood).
+//
+// Likelihood. Whittle's −log L = Σ_realizations Σ_k [log μ_k + I_k/μ_k] = R Σ_k [log μ_k + Ī_k/μ_k]
+// with Ī the mean periodogram over the R realizations (exact for a Gaussian surface: the I_k are
+// independent exponentials of mean μ_k over the half plane).
+#include "swell/validation/jonswap_fit.hpp"
+
+#include <ceres/ceres.h>
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <optional>
+#include <tuple>
+
+#include "swell/reference/errors.hpp"
+#include "swell/reference/frequency_spectrum.hpp"
+#include "swell/reference/moments.hpp"
+#include "swell/reference/spreading.hpp"
+#include "swell/validation/periodogram.hpp"
+
+namespace swell::validation {
+namespace {
+
+using reference::Grid;
+using reference::OceanCase;
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+const double kLogTwoPi = std::log(kTwoPi);
+const double kLog16 = std::log(16.0);
+
+// Ordinates whose model mean at the starting point is below this fraction of the largest carry
+// no information worth their rounding (e^(−5/4 x⁻⁴) underflows far below the peak) and are left
+// out of the likelihood.
+constexpr double kNegligibleMu = 1e-12;
+// ... and so are those within this factor of the rounding noise of the stored numbers: an
+// ordinate whose mean is 1000 times the noise is biased by 0.1 %.
+constexpr double kNoiseMargin = 1e3;
+
+// ---------------------------------------------------------------- the normalization F
+
+struct Normalization {
+  double value, d_gamma, d_sigma_a, d_sigma_b;  // F and its partial derivatives
+};
+
+// x⁻⁵ e^(−5/4 x⁻⁴), 0 where the exponential underflows (x < ~0.2).
+double pm_shape(double x) {
+  if (x <= 0) return 0;
+  const double x4 = x * x * x * x;
+  const double e = 1.25 / x4;
+  return e > 745 ? 0.0 : std::exp(-e) / (x4 * x);
+}
+
+// F(γ, σa, σb) and its gradient, each by its own Gauss–Kronrod quadrature of the differentiated
+// integrand. Why not numeric differentiation: the likelihood's gradient must be exact to let
+// the line search converge to 1e-5 of a standard error, and a finite difference of a
+// quadrature carries the quadrature's error divided by the step. The analytic partials
+//     ∂F/∂γ  = ∫ x⁻⁵ e^(…) r γ^(r−1) dx,
+//     ∂F/∂σa = ∫_{x≤1} x⁻⁵ e^(…) γ^r log γ · r (x − 1)²/σa³ dx   (σb likewise over x > 1)
+// are as cheap as F itself and accurate to the quadrature tolerance (1e-12).
+//
+// F = 1/5 + ∫ x⁻⁵ e^(−5/4 x⁻⁴) (γ^r − 1) dx: the Pierson–Moskowitz part in closed form
+// (u = 5/4 x⁻⁴), the rest lives within a few σ of x = 1. It is integrated in d = (x − 1)/σ,
+// r = e^(−d²/2), over [−12, 0] with σa and [0, 12] with σb (r < e^(−72) beyond), split at the
+// kink of σ at x = 1; in d there is no cancellation in x − 1 for narrow peaks. In d:
+//     F − 1/5 = Σ σ ∫ p(1 + σd) (γ^r − 1) dd,   ∂F/∂γ = Σ σ ∫ p r γ^(r−1) dd,
+//     ∂F/∂σ = ∫ p γ^r log γ · r d² dd   (one side each),    p(x) = x⁻⁵ e^(−5/4 x⁻⁴).
+Normalization normalization(double gamma, double sigma_a, double sigma_b) {
+  const double log_gamma = std::log(gamma);
+  constexpr double kTolerance = 1e-12;
+  // Each piece to 1e-10 of its own L1 norm, or to 1e-13 absolute: F ≥ 0.2 for γ ≥ 1 (and
+  // ~0.2 near it), so that is 5e-13 of F, and what the likelihood uses is log F and
+  // ∂(log F) = ∂F/F. A piece that is tiny (a peak narrower than anything the data hold)
+  // need not be resolved relative to itself.
+  auto integrate = [&](auto&& f, double a, double b, const char* what) {
+    double error = 0, l1 = 0;
+    const double value = boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
+        f, a, b, 12, kTolerance, &error, &l1);
+    if (!(std::isfinite(value) && error <= 1e-10 * l1 + 1e-13)) {
+      throw NumericalError(fmt::format(
+          "JONSWAP normalization: {} for γ = {:.6g}, σa = {:.6g}, σb = {:.6g} reached only "
+          "{:.3g} (L1 norm {:.3g}), not 1e-10 of it nor 1e-13",
+          what, gamma, sigma_a, sigma_b, error, l1));
+    }
+    return value;
+  };
+  Normalization n{0.2, 0, 0, 0};
+  for (const bool below : {true, false}) {
+    const double sigma = below ? sigma_a : sigma_b;
+    // x = 1 + σd stays above 0.05, where p(x) = e^(−200000)/… is 0 in double anyway.
+    const double a = below ? std::max(-12.0, -0.95 / sigma) : 0.0, b = below ? 0.0 : 12.0;
+    auto p = [sigma](double d) { return pm_shape(1.0 + sigma * d); };
+    auto excess = [&](double d) { return p(d) * std::expm1(std::exp(-0.5 * d * d) * log_gamma); };
+    auto by_gamma = [&](double d) {
+      const double r = std::exp(-0.5 * d * d);
+      return p(d) * r * std::exp((r - 1.0) * log_gamma);
+    };
+    auto by_sigma = [&](double d) {
+      const double r = std::exp(-0.5 * d * d);
+      return p(d) * std::exp(r * log_gamma) * log_gamma * r * d * d;
+    };
+    n.value += sigma * integrate(excess, a, b, "F");
+    n.d_gamma += sigma * integrate(by_gamma, a, b, "∂F/∂γ");
+    (below ? n.d_sigma_a : n.d_sigma_b) += integrate(by_sigma, a, b, "∂F/∂σ");
+  }
+  return n;
+}
+
+// F for doubles, and for Ceres' Jets with the chain rule through the quadrature derivatives.
+double normalization_of(double gamma, double sigma_a, double sigma_b) {
+  return normalization(gamma, sigma_a, sigma_b).value;
+}
+template <int N>
+ceres::Jet<double, N> normalization_of(const ceres::Jet<double, N>& gamma,
+                                       const ceres::Jet<double, N>& sigma_a,
+                                       const ceres::Jet<double, N>& sigma_b) {
+  const auto n = normalization(gamma.a, sigma_a.a, sigma_b.a);
+  ceres::Jet<double, N> out(n.value);
+  out.v = n.d_gamma * gamma.v + n.d_sigma_a * sigma_a.v + n.d_sigma_b * sigma_b.v;
+  return out;
+}
+
+double scalar(double x) { return x; }
+template <int N>
+double scalar(const ceres::Jet<double, N>& x) {
+  return x.a;
+}
+
+// ---------------------------------------------------------------- the wave vectors
+
+// What the model needs of each wave vector, independent of θ.
+struct Geometry {
+  std::vector<std::size_t> index;  // into the nx·ny grid, FFT order
+  std::vector<double> omega;       // ω(|k|), rad/s
+  std::vector<double> base;        // log A_k − 5 log ω_k
+};
+
+void require_family(const OceanCase& ocean_case) {
+  const auto& model = ocean_case.spectrum.model;
+  if (model != "jonswap" && model != "tma" && model != "bretschneider" &&
+      model != "pierson-moskowitz") {
+    throw InvalidInput(
+        "the JONSWAP fit needs a case whose spectrum is jonswap, tma, "
+        "bretschneider or pierson-moskowitz (the JONSWAP family); got '" +
+        model + "'");
+  }
+}
+
+// The wave vectors of the half plane (or of the whole grid) that carry energy, with A_k > 0.
+// The spreading D is the case's, built (for laws in ω/ωp) around the case's own ωp: it is held
+// fixed while Tp is fitted. So are the dispersion relation (depth, gravity; a loop period only
+// quantizes the time factor, not Ψ) and, for tma, the Kitaigorodskii factor at the case's depth.
+Geometry geometry(const OceanCase& ocean_case, bool half_plane) {
+  require_family(ocean_case);
+  const auto directional = ocean_case.directional_spectrum();
+  const auto* spread = dynamic_cast<const reference::SpreadSpectrum*>(directional.get());
+  if (!spread) throw InvalidInput("the JONSWAP fit needs a spectrum with a spreading model");
+  const auto& spreading = spread->spreading();
+  const auto dispersion = ocean_case.dispersion();
+  const double theta_w = spread->mean_direction();
+  std::function<double(double)> depth_factor = [](double) { return 1.0; };
+  if (ocean_case.spectrum.model == "tma") {
+    const auto it = ocean_case.spectrum.choices.find("depth_factor");
+    const bool tv = it != ocean_case.spectrum.choices.end() && it->second == "thompson-vincent";
+    const double depth = ocean_case.depth, g = ocean_case.gravity;
+    depth_factor = [tv, depth, g](double omega) {
+      return tv ? reference::kitaigorodskii_thompson_vincent(omega, depth, g)
+                : reference::kitaigorodskii_exact(omega, depth, g);
+    };
+  }
+  const Grid& grid = ocean_case.grid;
+  const double dk2 = grid.dkx() * grid.dky();
+  Geometry out;
+  for (int j = 0; j < grid.ny; ++j) {
+    const int m = Grid::signed_index(j, grid.ny);
+    for (int i = 0; i < grid.nx; ++i) {
+      const int n = Grid::signed_index(i, grid.nx);
+      if (!grid.carries_energy(n, m) || (half_plane && !in_half_plane(n, m))) continue;
+      const double kx = n * grid.dkx(), ky = m * grid.dky();
+      const double k = std::hypot(kx, ky);
+      const double omega = dispersion.omega(k);
+      const double theta = std::atan2(ky, kx) - theta_w;
+      const double a = 0.5 *
+                       (spreading(omega, theta) + spreading(omega, theta + std::numbers::pi)) *
+                       dispersion.group_velocity(k) / k * dk2 * depth_factor(omega);
+      if (!(a > 0) || !(omega > 0) || !std::isfinite(a)) continue;
+      out.index.push_back(std::size_t(j) * grid.nx + i);
+      out.omega.push_back(omega);
+      out.base.push_back(std::log(a) - 5.0 * std::log(omega));
+    }
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- the likelihood
+
+class Whittle {
+ public:
+  Geometry geometry;
+  std::vector<double> mean_i;          // Ī_k, mean over realizations
+  std::vector<double> reference_term;  // log μ_k + Ī_k/μ_k at the start (subtracted, see nll)
+  int realizations = 0;
+  double fixed_sigma_a = 0.07, fixed_sigma_b = 0.09;  // σa, σb unless fitted
+
+  // log μ_k for every used k, handed to f(i, log μ_i). T is double or a Ceres Jet.
+  template <typename T, typename F>
+  void for_each_log_mu(const T& log_hs, const T& log_tp, const T& log_gamma, const T& sigma_a,
+                       const T& sigma_b, F&& f) const {
+    using std::exp;
+    using std::log;
+    const T log_scale = log_tp - kLogTwoPi;  // x = ω Tp/2π = ω/ωp
+    const T scale = exp(log_scale);
+    const T c = 2.0 * log_hs - kLog16 + log_scale - 5.0 * log_scale -
+                log(normalization_of(exp(log_gamma), sigma_a, sigma_b));
+    const T ka = 0.5 / (sigma_a * sigma_a), kb = 0.5 / (sigma_b * sigma_b);
+    const auto& omega = geometry.omega;
+    const auto& base = geometry.base;
+    for (std::size_t i = 0; i < omega.size(); ++i) {
+      const T x = omega[i] * scale;
+      const T d = x - 1.0;
+      const T r = exp(-(d * d) * (scalar(x) <= 1.0 ? ka : kb));
+      const T x2 = x * x;
+      f(i, T(base[i] + c - 1.25 / (x2 * x2) + r * log_gamma));
+    }
+  }
+
+  // −log L minus its value at the start. Subtracting each ordinate's starting term before
+  // summing keeps the sum O(1) instead of O(K·R·20), so its rounding (summed in blocks of 256)
+  // stays near 1e-12 and the line search can resolve the last steps of the optimization.
+  template <typename T>
+  T relative_nll(const T& log_hs, const T& log_tp, const T& log_gamma, const T& sigma_a,
+                 const T& sigma_b) const {
+    using std::exp;
+    T total(0.0), block(0.0);
+    int count = 0;
+    for_each_log_mu(log_hs, log_tp, log_gamma, sigma_a, sigma_b,
+                    [&](std::size_t i, const T& log_mu) {
+                      block += log_mu + mean_i[i] * exp(-log_mu) - reference_term[i];
+                      if (++count == 256) total += block, block = T(0.0), count = 0;
+                    });
+    total += block;
+    return double(realizations) * total;
+  }
+
+  // Σ R (∂ log μ/∂p)(∂ log μ/∂p)ᵀ: the expected Fisher information in whatever parameters the
+  // Jets are seeded with (for an exponential of mean μ, E[(∂/∂p(−log L))²] = (∂μ/∂p)²/μ²).
+  template <int N>
+  Eigen::Matrix<double, N, N> fisher(const ceres::Jet<double, N>& log_hs,
+                                     const ceres::Jet<double, N>& log_tp,
+                                     const ceres::Jet<double, N>& log_gamma,
+                                     const ceres::Jet<double, N>& sigma_a,
+                                     const ceres::Jet<double, N>& sigma_b) const {
+    Eigen::Matrix<double, N, N> f = Eigen::Matrix<double, N, N>::Zero();
+    for_each_log_mu(log_hs, log_tp, log_gamma, sigma_a, sigma_b,
+                    [&](std::size_t, const ceres::Jet<double, N>& log_mu) {
+                      f.noalias() += log_mu.v * log_mu.v.transpose();
+                    });
+    return double(realizations) * f;
+  }
+};
+
+// The parameters the optimizer moves: φ = (log Hs, log Tp, log γ[, log σa, log σb]).
+// Logarithms keep Hs, Tp, σ positive without bounds. For γ the constraint is γ > 0, not γ ≥ 1:
+// γ^r is smooth through γ = 1 (γ < 1 is a dip at the peak), so the likelihood is regular there
+// and a sea without peak enhancement (Pierson–Moskowitz, γ = 1) gets an interior estimate
+// scattered around 1 with a valid Wald interval, instead of a pile-up on a boundary where Wald
+// intervals fail. An estimate below 1 says the data show no enhancement.
+template <int N>
+using Vector = Eigen::Matrix<double, N, 1>;
+
+// What for_each_log_mu takes, (log Hs, log Tp, log γ, σa, σb), from φ.
+template <int N, typename T>
+std::array<T, 5> likelihood_arguments(const Whittle& w, const T* phi) {
+  using std::exp;
+  if constexpr (N == 5) {
+    return {phi[0], phi[1], phi[2], exp(phi[3]), exp(phi[4])};
+  } else {
+    return {phi[0], phi[1], phi[2], T(w.fixed_sigma_a), T(w.fixed_sigma_b)};
+  }
+}
+
+// Ceres minimizes over whitened coordinates u = Lᵀ (φ − φ0), F_φ(φ0) = L Lᵀ the Fisher
+// information at the start: there the Hessian of −log L is ≈ the identity, so BFGS starts
+// well scaled, and the gradient in u measures the distance to the optimum in standard errors,
+// which makes gradient_tolerance a statement about statistics, not units.
+template <int N>
+struct WhittleCost {
+  const Whittle* whittle;
+  Vector<N> phi0;
+  Eigen::Matrix<double, N, N> to_phi;  // L⁻ᵀ
+
+  template <typename T>
+  bool operator()(const T* u, T* cost) const {
+    using std::isfinite;
+    T phi[N];
+    for (int i = 0; i < N; ++i) {
+      phi[i] = T(phi0[i]);
+      for (int j = 0; j < N; ++j) phi[i] += to_phi(i, j) * u[j];
+    }
+    const auto p = likelihood_arguments<N>(*whittle, phi);
+    *cost = whittle->relative_nll(p[0], p[1], p[2], p[3], p[4]);
+    return isfinite(*cost);
+  }
+};
+
+template <int N>
+Eigen::Matrix<double, N, N> fisher_in_phi(const Whittle& w, const Vector<N>& phi) {
+  using Jet = ceres::Jet<double, N>;
+  Jet seeded[N];
+  for (int i = 0; i < N; ++i) seeded[i] = Jet(phi[i], i);
+  const auto p = likelihood_arguments<N>(w, seeded);
+  return w.fisher<N>(p[0], p[1], p[2], p[3], p[4]);
+}
+
+// In the reported parameters (Hs, Tp, γ[, σa, σb]).
+template <int N>
+Eigen::Matrix<double, N, N> fisher_natural(const Whittle& w, const std::array<double, 5>& theta) {
+  using Jet = ceres::Jet<double, N>;
+  const Jet hs(theta[0], 0), tp(theta[1], 1), gamma(theta[2], 2);
+  const Jet sa = N == 5 ? Jet(theta[3], 3 % N) : Jet(theta[3]);
+  const Jet sb = N == 5 ? Jet(theta[4], 4 % N) : Jet(theta[4]);
+  return w.fisher<N>(log(hs), log(tp), log(gamma), sa, sb);
+}
+
+struct Solution {
+  std::array<double, 5> theta;  // Hs, Tp, γ, σa, σb
+  int iterations = 0;
+  bool converged = false;
+  std::string report;
+};
+
+template <int N>
+Solution minimize(const Whittle& w, const Vector<N>& phi0) {
+  // Whitening from the Fisher information at the start; the identity if it is not positive
+  // definite there (the optimizer then still works, only less well scaled).
+  Eigen::Matrix<double, N, N> to_phi = Eigen::Matrix<double, N, N>::Identity();
+  const Eigen::LLT<Eigen::Matrix<double, N, N>> llt(fisher_in_phi<N>(w, phi0));
+  if (llt.info() == Eigen::Success) {
+    const Eigen::Matrix<double, N, N> l = llt.matrixL();
+    const Eigen::Matrix<double, N, N> l_inverse =
+        l.template triangularView<Eigen::Lower>().solve(Eigen::Matrix<double, N, N>::Identity());
+    if (l_inverse.allFinite()) to_phi = l_inverse.transpose();
+  }
+  ceres::GradientProblem problem(new ceres::AutoDiffFirstOrderFunction<WhittleCost<N>, N>(
+      new WhittleCost<N>{&w, phi0, to_phi}));
+  ceres::GradientProblemSolver::Options options;
+  // Dense BFGS: 3 or 5 parameters. In whitened coordinates the gradient is the distance to the
+  // optimum in standard errors: stop at 1e-5 of one. The relative cost change is not a useful
+  // criterion (the cost is relative to the start and may be tiny), so function_tolerance is
+  // effectively off, and parameter_tolerance only stops steps below rounding.
+  options.line_search_direction_type = ceres::BFGS;
+  options.max_num_iterations = 500;
+  options.gradient_tolerance = 1e-5;
+  options.function_tolerance = 1e-15;
+  options.parameter_tolerance = 1e-13;
+  options.logging_type = ceres::SILENT;
+  double u[N] = {};
+  ceres::GradientProblemSolver::Summary summary;
+  ceres::Solve(options, problem, u, &summary);
+  Vector<N> phi = phi0 + to_phi * Eigen::Map<const Vector<N>>(u);
+  Solution s;
+  const auto p = likelihood_arguments<N>(w, phi.data());
+  s.theta = {std::exp(p[0]), std::exp(p[1]), std::exp(p[2]), p[3], p[4]};
+  s.iterations = int(summary.iterations.size()) - 1;
+  s.converged = summary.termination_type == ceres::CONVERGENCE;
+  s.report = summary.BriefReport();
+  return s;
+}
+
+// ---------------------------------------------------------------- starting values
+
+// Tp from the peak of the periodogram binned in ω: the energy of each bin of 5 % in ω over its
+// width estimates S(ω) whatever the spreading; a parabola through the log densities of the
+// peak bin and its neighbours refines it within the bin.
+double starting_tp(const Geometry& g, const std::vector<double>& mean_i) {
+  const auto [lo_it, hi_it] = std::minmax_element(g.omega.begin(), g.omega.end());
+  constexpr double kWidth = 0.05;  // in ln ω
+  const double lo = std::log(*lo_it);
+  const int bins = std::max(1, int(std::ceil((std::log(*hi_it) - lo) / kWidth)) + 1);
+  std::vector<double> energy(bins, 0.0), density(bins, 0.0);
+  for (std::size_t i = 0; i < g.omega.size(); ++i) {
+    energy[std::min(bins - 1, int((std::log(g.omega[i]) - lo) / kWidth))] += mean_i[i];
+  }
+  for (int b = 0; b < bins; ++b) {
+    density[b] = energy[b] / (std::exp(lo + (b + 1) * kWidth) - std::exp(lo + b * kWidth));
+  }
+  const int peak = int(std::max_element(density.begin(), density.end()) - density.begin());
+  double log_omega = lo + (peak + 0.5) * kWidth;
+  if (peak > 0 && peak + 1 < bins && density[peak - 1] > 0 && density[peak + 1] > 0) {
+    const double a = std::log(density[peak - 1]), b = std::log(density[peak]),
+                 c = std::log(density[peak + 1]);
+    const double curvature = a - 2 * b + c;
+    if (curvature < 0) log_omega += std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5) * kWidth;
+  }
+  return kTwoPi / std::exp(log_omega);
+}
+
+void require_finite_parameters(const JonswapParameters& p) {
+  require(std::isfinite(p.hs) && p.hs > 0, "hs", "finite and > 0 m", p.hs);
+  require(std::isfinite(p.tp) && p.tp > 0, "tp", "finite and > 0 s", p.tp);
+  require(std::isfinite(p.gamma) && p.gamma > 0, "gamma", "finite and > 0", p.gamma);
+  require(std::isfinite(p.sigma_a) && p.sigma_a > 0, "sigma_a", "finite and > 0", p.sigma_a);
+  require(std::isfinite(p.sigma_b) && p.sigma_b > 0, "sigma_b", "finite and > 0", p.sigma_b);
+}
+
+Estimate estimate(double value, double variance) {
+  Estimate e;
+  e.value = value;
+  e.standard_error = std::sqrt(variance);
+  // The Wald interval: estimate ± z_0.975 · se, z_0.975 = 1.959964.
+  e.ci95_low = value - 1.959963984540054 * e.standard_error;
+  e.ci95_high = value + 1.959963984540054 * e.standard_error;
+  return e;
+}
+
+template <int N>
+JonswapFit finish(const Whittle& w, const Solution& s, bool fit_sigma) {
+  Eigen::Matrix<double, N, N> f = fisher_natural<N>(w, s.theta);
+  if (!f.allFinite()) {
+    throw NumericalError("Fisher information at the estimate is not finite");
+  }
+  // Singular: judged in relative units, on the information about the logarithms of the
+  // parameters, F_log = diag(θ) F diag(θ) (unit-free): a condition number beyond 1e12 leaves no
+  // digit of the covariance, and means that some combination of the parameters is determined
+  // a million times less precisely (relatively) than another — not identifiable.
+  Vector<N> theta;
+  for (int i = 0; i < N; ++i) theta[i] = s.theta[i];
+  const Eigen::Matrix<double, N, N> f_log = theta.asDiagonal() * f * theta.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eigen(f_log);
+  const double smallest = eigen.eigenvalues().minCoeff(), largest = eigen.eigenvalues().maxCoeff();
+  if (!(smallest > 1e-12 * largest)) {
+    throw NumericalError(fmt::format(
+        "Fisher information at the estimate is singular (eigenvalues of its relative form from "
+        "{:.3g} to {:.3g}): the parameters are not identifiable from these wave vectors{}",
+        smallest, largest,
+        fit_sigma ? " (σa and σb need a peak enhancement γ clearly above 1)" : ""));
+  }
+  // F⁻¹ = diag(θ) F_log⁻¹ diag(θ), F_log⁻¹ = V Λ⁻¹ Vᵀ.
+  const Eigen::Matrix<double, N, N>& v = eigen.eigenvectors();
+  const Eigen::Matrix<double, N, N> log_covariance =
+      v * eigen.eigenvalues().cwiseInverse().asDiagonal() * v.transpose();
+  const Eigen::Matrix<double, N, N> covariance =
+      theta.asDiagonal() * log_covariance * theta.asDiagonal();
+  JonswapFit fit;
+  fit.hs = estimate(s.theta[0], covariance(0, 0));
+  fit.tp = estimate(s.theta[1], covariance(1, 1));
+  fit.gamma = estimate(s.theta[2], covariance(2, 2));
+  if constexpr (N == 5) {
+    fit.sigma_a = estimate(s.theta[3], covariance(3, 3));
+    fit.sigma_b = estimate(s.theta[4], covariance(4, 4));
+  }
+  return fit;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- public
+
+JonswapParameters case_jonswap_parameters(const OceanCase& ocean_case) {
+  require_family(ocean_case);
+  const auto& spec = ocean_case.spectrum;
+  JonswapParameters p;
+  auto given = [&](const char* name) -> std::optional<double> {
+    const auto it = spec.numbers.find(name);
+    return it == spec.numbers.end() ? std::nullopt : std::optional<double>(it->second);
+  };
+  if (spec.model == "jonswap" || spec.model == "tma") {
+    reference::ModelSpec jonswap = spec;  // the JONSWAP part (tma: without its depth factor)
+    jonswap.model = "jonswap";
+    jonswap.choices.erase("depth_factor");
+    jonswap.numbers["gravity"] = ocean_case.gravity;
+    const auto s = std::dynamic_pointer_cast<const reference::Jonswap>(
+        reference::make_frequency_spectrum(jonswap));
+    const auto normalization = spec.choices.find("normalization");
+    const bool exact = normalization == spec.choices.end() || normalization->second == "exact";
+    p.hs = given("hs") && exact ? *given("hs") : 4.0 * std::sqrt(reference::spectral_moment(*s, 0));
+    p.tp = given("tp") ? *given("tp") : kTwoPi / s->peak_omega();
+    p.gamma = s->shape().gamma;
+    p.sigma_a = s->shape().sigma_a;
+    p.sigma_b = s->shape().sigma_b;
+  } else {  // bretschneider, pierson-moskowitz: JONSWAP with γ = 1
+    const auto s = reference::make_frequency_spectrum(ocean_case.full_spectrum_spec());
+    p.hs = given("hs") ? *given("hs") : 4.0 * std::sqrt(reference::spectral_moment(*s, 0));
+    p.tp = given("tp") ? *given("tp") : kTwoPi / s->peak_omega();
+    p.gamma = 1.0;
+  }
+  return p;
+}
+
+std::vector<double> jonswap_model_periodogram(const OceanCase& ocean_case,
+                                              const JonswapParameters& parameters) {
+  ocean_case.validate();
+  require_finite_parameters(parameters);
+  Whittle w;
+  w.geometry = geometry(ocean_case, false);
+  std::vector<double> mu(std::size_t(ocean_case.grid.nx) * ocean_case.grid.ny, 0.0);
+  w.for_each_log_mu(std::log(parameters.hs), std::log(parameters.tp), std::log(parameters.gamma),
+                    parameters.sigma_a, parameters.sigma_b, [&](std::size_t i, double log_mu) {
+                      mu[w.geometry.index[i]] = std::exp(log_mu);
+                    });
+  return mu;
+}
+
+JonswapFit fit_jonswap_periodograms(const OceanCase& ocean_case,
+                                    const std::vector<std::vector<double>>& periodograms,
+                                    const JonswapFitOptions& options, double unit_roundoff) {
+  ocean_case.validate();
+  require_family(ocean_case);
+  const Grid& grid = ocean_case.grid;
+  const std::size_t count = std::size_t(grid.nx) * grid.ny;
+  if (periodograms.empty()) throw InvalidInput("the JONSWAP fit needs at least one realization");
+  for (std::size_t r = 0; r < periodograms.size(); ++r) {
+    if (periodograms[r].size() != count) {
+      throw InvalidInput(
+          fmt::format("periodogram of realization {} has {} values; the case's grid {}×{} needs {}",
+                      r, periodograms[r].size(), grid.nx, grid.ny, count));
+    }
+    for (double value : periodograms[r]) {
+      if (!(std::isfinite(value) && value >= 0)) {
+        throw InvalidInput(fmt::format(
+            "periodogram of realization {} holds {} (must be finite and ≥ 0)", r, value));
+      }
+    }
+  }
+  require(std::isfinite(unit_roundoff) && unit_roundoff >= 0, "unit roundoff", "finite and ≥ 0",
+          unit_roundoff);
+
+  // Every energy-carrying k of the half plane, with the mean periodogram over realizations.
+  Geometry all = geometry(ocean_case, true);
+  const int realizations = int(periodograms.size());
+  std::vector<double> mean_i(all.index.size(), 0.0);
+  double energy = 0;  // Σ over the half plane: half of mean h²
+  for (std::size_t i = 0; i < all.index.size(); ++i) {
+    for (const auto& p : periodograms) mean_i[i] += p[all.index[i]];
+    mean_i[i] /= realizations;
+    energy += mean_i[i];
+  }
+  if (!(energy > 0)) {
+    throw InvalidInput(
+        "the frames carry no energy at any wave vector the case's spectrum "
+        "fills (flat surfaces?)");
+  }
+
+  // Starting values from the data, never from the case: Hs from the variance (4√(Σ I) over
+  // the whole plane, the band-limited Hs), Tp from the peak of the binned periodogram, γ = 2
+  // (between Pierson–Moskowitz and the mean JONSWAP 3.3), σ at JONSWAP's 0.07 and 0.09.
+  const auto truth_shape = case_jonswap_parameters(ocean_case);
+  JonswapParameters start;
+  start.hs = 4.0 * std::sqrt(2.0 * energy);
+  start.tp = starting_tp(all, mean_i);
+  start.gamma = 2.0;
+  start.sigma_a = options.fit_sigma ? 0.07 : truth_shape.sigma_a;
+  start.sigma_b = options.fit_sigma ? 0.09 : truth_shape.sigma_b;
+
+  // Only ordinates the model gives a non-negligible mean at the start: above 1e-12 of the
+  // largest, and above the rounding noise of the stored surface (a rounding error of relative
+  // size u, white over the grid, adds u²·mean(h²)/(3 Nx Ny) to every ordinate on average).
+  Whittle w;
+  w.realizations = realizations;
+  w.fixed_sigma_a = start.sigma_a;
+  w.fixed_sigma_b = start.sigma_b;
+  std::vector<double> log_mu0(all.index.size());
+  w.geometry = all;
+  w.for_each_log_mu(std::log(start.hs), std::log(start.tp), std::log(start.gamma), start.sigma_a,
+                    start.sigma_b, [&](std::size_t i, double log_mu) { log_mu0[i] = log_mu; });
+  const double log_max = *std::max_element(log_mu0.begin(), log_mu0.end());
+  const double noise = kNoiseMargin * unit_roundoff * unit_roundoff * 2.0 * energy / (3.0 * count);
+  const double log_floor = std::max(log_max + std::log(kNegligibleMu), std::log(noise));
+  w.geometry = {};
+  for (std::size_t i = 0; i < all.index.size(); ++i) {
+    if (!(log_mu0[i] > log_floor)) continue;
+    w.geometry.index.push_back(all.index[i]);
+    w.geometry.omega.push_back(all.omega[i]);
+    w.geometry.base.push_back(all.base[i]);
+    w.mean_i.push_back(mean_i[i]);
+    w.reference_term.push_back(log_mu0[i] + mean_i[i] * std::exp(-log_mu0[i]));
+  }
+  const int parameters = options.fit_sigma ? 5 : 3;
+  if (int(w.mean_i.size()) < 10 * parameters) {
+    throw InvalidInput(fmt::format(
+        "only {} wave vectors of the grid carry a non-negligible share of the spectrum; the "
+        "JONSWAP fit needs at least {} (a finer or larger grid)",
+        w.mean_i.size(), 10 * parameters));
+  }
+
+  Solution s;
+  JonswapFit fit;
+  if (options.fit_sigma) {
+    Vector<5> phi0;
+    phi0 << std::log(start.hs), std::log(start.tp), std::log(start.gamma), std::log(start.sigma_a),
+        std::log(start.sigma_b);
+    s = minimize<5>(w, phi0);
+    fit = finish<5>(w, s, true);
+  } else {
+    Vector<3> phi0;
+    phi0 << std::log(start.hs), std::log(start.tp), std::log(start.gamma);
+    s = minimize<3>(w, phi0);
+    fit = finish<3>(w, s, false);
+  }
+  fit.wave_vectors = int(w.mean_i.size());
+  fit.realizations = realizations;
+  fit.iterations = s.iterations;
+  fit.converged = s.converged;
+  fit.report = s.report;
+  double nll = 0;
+  w.for_each_log_mu(
+      std::log(s.theta[0]), std::log(s.theta[1]), std::log(s.theta[2]), s.theta[3], s.theta[4],
+      [&](std::size_t i, double log_mu) { nll += log_mu + w.mean_i[i] * std::exp(-log_mu); });
+  fit.negative_log_likelihood = realizations * nll;
+  return fit;
+}
+
+JonswapFit fit_jonswap(const OceanCase& ocean_case,
+                       const std::vector<reference::FrameSequence>& realizations,
+                       const JonswapFitOptions& options) {
+  ocean_case.validate();
+  require_family(ocean_case);
+  if (realizations.empty()) throw InvalidInput("the JONSWAP fit needs at least one realization");
+  const Grid& grid = ocean_case.grid;
+  auto close = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::abs(b); };
+  std::vector<std::vector<double>> periodograms;
+  double unit_roundoff = 0;
+  for (std::size_t r = 0; r < realizations.size(); ++r) {
+    const auto& frames = realizations[r];
+    const Grid& g = frames.grid;
+    if (g.nx != grid.nx || g.ny != grid.ny || !close(g.lx, grid.lx) || !close(g.ly, grid.ly)) {
+      throw InvalidInput(fmt::format(
+          "realization {}: frames on a {}×{} grid over {:g}×{:g} m, the case's grid is {}×{} "
+          "over {:g}×{:g} m",
+          r, g.nx, g.ny, g.lx, g.ly, grid.nx, grid.ny, grid.lx, grid.ly));
+    }
+    if (options.frame < 0 || options.frame >= int(frames.frames.size())) {
+      throw InvalidInput(fmt::format("realization {}: frame {} requested, it has {} frame(s)", r,
+                                     options.frame, frames.frames.size()));
+    }
+    if (!frames.frames[options.frame].fields.count(reference::Field::height)) {
+      throw InvalidInput(
+          fmt::format("realization {}: frame {} has no height field; the JONSWAP fit needs heights",
+                      r, options.frame));
+    }
+    const auto spectrum = field_spectrum(frames.field(options.frame, reference::Field::height), g);
+    std::vector<double> periodogram(spectrum.size());
+    for (std::size_t i = 0; i < spectrum.size(); ++i) periodogram[i] = std::norm(spectrum[i]);
+    periodograms.push_back(std::move(periodogram));
+    unit_roundoff = std::max(unit_roundoff, frames.unit_roundoff);
+  }
+  return fit_jonswap_periodograms(ocean_case, periodograms, options, unit_roundoff);
+}
+
+}  // namespace swell::validation

@@ -282,3 +282,109 @@ TEST_F(OceanCli, SynthBadInputExitsTwoNamingTheProblem) {
 // ==================================================================== end of swell synth
 
 }  // namespace
+
+// ==================================================================== swell fit
+// (appended by the JONSWAP-fit work; swell fit is documented in docs/fit.md)
+
+namespace {
+
+// JONSWAP Hs 3 m, Tp 8 s, γ 3.3 + cos-2s s = 10 on 256² over 800 m: the peak at |k| = 8 Δk
+// (coarser grids leave σa, σb unidentifiable from one surface) and the axes reaching ω = 4 ωp.
+// No [input]: frames come from --input.
+constexpr const char* kFitCase = R"([grid]
+n = [256, 256]
+length = [800.0, 800.0]
+[spectrum]
+model = "jonswap"
+hs = 3.0
+tp = 8.0
+gamma = 3.3
+[spreading]
+model = "cos2s"
+s = 10.0
+wind_dir_deg = 30.0
+)";
+
+TEST_F(OceanCli, FitSynthDirectoriesAndPatterns) {
+  std::ofstream(path("case.toml")) << kFitCase;
+  for (const char* seed : {"1", "2"}) {
+    const CliRun run = swell("synth --case " + path("case.toml") + " --impl fftw --precision fp64 "
+                             "--format npy --seed " + seed + " --out " + path(std::string("r") + seed));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+  }
+  // Two realizations: a synth directory and a pattern read with the case (height "h").
+  const CliRun run = swell("fit --input " + path("r1") + " --input '" + path("r2") +
+                           "/frame_%04d.npy' --case " + path("case.toml") + " --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto document = nlohmann::json::parse(run.output);
+  EXPECT_EQ(document.at("converged"), true);
+  EXPECT_EQ(document.at("realizations"), 2);
+  EXPECT_GT(document.at("wave_vectors").get<int>(), 20000);
+  EXPECT_EQ(document.at("interval"), "wald");
+  const std::map<std::string, double> truth = {{"hs", 3.0}, {"tp", 8.0}, {"gamma", 3.3}};
+  ASSERT_EQ(document.at("fit").size(), 3u);
+  for (const auto& [name, value] : truth) {
+    SCOPED_TRACE(name);
+    const auto& e = document.at("fit").at(name);
+    const double v = e.at("value"), se = e.at("se"), lo = e.at("ci95")[0], hi = e.at("ci95")[1];
+    EXPECT_GT(se, 0);
+    EXPECT_NEAR(hi - v, 1.959964 * se, 1e-6 * se);
+    EXPECT_NEAR(v - lo, 1.959964 * se, 1e-6 * se);
+    EXPECT_NEAR(v, value, 5 * se);  // fixed seeds: deterministic
+    EXPECT_EQ(document.at("truth").at(name), value);
+  }
+
+  // The table, and --sigma adds σa and σb.
+  const CliRun table = swell("fit --input " + path("r1") + " --case " + path("case.toml") +
+                             " --sigma --json " + path("fit.json"));
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  for (const char* fragment : {"95 % interval (Wald)", "hs [m]", "tp [s]", "gamma", "sigma_a",
+                               "sigma_b", "converged: yes", "1 realization"}) {
+    EXPECT_TRUE(contains(table.output, fragment)) << fragment << " not in: " << table.output;
+  }
+  std::ifstream file(path("fit.json"));
+  const auto with_sigma = nlohmann::json::parse(file);
+  EXPECT_TRUE(with_sigma.at("fit").contains("sigma_a"));
+  EXPECT_TRUE(with_sigma.at("fit").contains("sigma_b"));
+  EXPECT_EQ(with_sigma.at("truth").at("sigma_b"), 0.09);
+}
+
+TEST_F(OceanCli, FitBadInputExitsTwoNamingTheProblem) {
+  std::ofstream(path("case.toml")) << kFitCase;
+  ASSERT_EQ(swell("synth --case " + path("case.toml") + " --impl fftw --out " + path("r")).exit_code, 0);
+  std::ofstream(path("phillips.toml")) << R"([grid]
+n = [256, 256]
+length = [800.0, 800.0]
+[spectrum]
+model = "phillips"
+amplitude = 1e-3
+wind_speed = 10.0
+)";
+  std::string other = kFitCase;
+  other.replace(other.find("800.0, 800.0"), 12, "300.0, 300.0");
+  std::ofstream(path("other.toml")) << other;
+  fs::create_directories(dir_ / "empty");
+  const std::string c = " --case " + path("case.toml");
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"--input " + path("r") + " --case " + path("phillips.toml"), {"phillips", "JONSWAP family"}},
+      {"--input " + path("r") + " --case " + path("other.toml"), {"grid", "300"}},
+      {"--input " + path("empty") + c, {"without case.toml"}},
+      {"--input " + path("r/nothing_%04d.exr") + c, {"nothing_0000.exr"}},
+      {"--input " + path("r") + c + " --frame 2", {"frame 2"}},
+      {c.substr(1), {"--input"}},
+      {"--input " + path("r"), {"--case"}},
+      {"--input " + path("r") + " --case " + path("missing.toml"), {"missing.toml"}},
+  };
+  for (const auto& [args, fragments] : cases) {
+    SCOPED_TRACE(args);
+    const CliRun run = swell("fit " + args);
+    EXPECT_EQ(run.exit_code, 2) << run.output;
+    for (const auto& fragment : fragments) {
+      EXPECT_TRUE(contains(run.output, fragment)) << "'" << fragment << "' not in: " << run.output;
+    }
+  }
+}
+
+}  // namespace
+
+// ==================================================================== end of swell fit

@@ -9,6 +9,7 @@
 // normalization, m0 = Hs²/16) and the case's spreading, dispersion and depth (TMA: the
 // Kitaigorodskii factor of the case's depth), which are held fixed.
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "swell/reference/fields.hpp"
@@ -40,9 +41,34 @@ struct JonswapFit {
 
 // `realizations`: independent surfaces of the same case (different seeds); each contributes one
 // frame. Throws InvalidInput when the case's spectrum is not jonswap/tma-compatible or the
-// frames lack a height field.
+// frames lack a height field. docs/fit.md has the model, the likelihood and the intervals.
 JonswapFit fit_jonswap(const reference::OceanCase& ocean_case,
                        const std::vector<reference::FrameSequence>& realizations,
                        const JonswapFitOptions& options = {});
+
+// The same fit from periodograms I(k) = |ĥ(k)|², one per realization, each nx·ny values in FFT
+// order (only the half plane of energy-carrying k is read). `unit_roundoff` of the numbers the
+// periodograms were computed from sets the rounding-noise floor below which ordinates are not
+// used (0: no floor). fit_jonswap computes I from the frames and calls this.
+JonswapFit fit_jonswap_periodograms(const reference::OceanCase& ocean_case,
+                                    const std::vector<std::vector<double>>& periodograms,
+                                    const JonswapFitOptions& options = {},
+                                    double unit_roundoff = 0);
+
+// A point of the fitted family: JONSWAP with exact normalization (m0 = Hs²/16).
+struct JonswapParameters {
+  double hs = 0, tp = 0;  // m, s
+  double gamma = 3.3, sigma_a = 0.07, sigma_b = 0.09;
+};
+
+// The family's parameters of a case's spectrum (jonswap in any form, tma's JONSWAP part,
+// bretschneider and pierson-moskowitz as γ = 1): hs = 4√m0 of that JONSWAP spectrum (for a
+// DNV-normalized case, its actual m0), tp = 2π/ωp. Throws InvalidInput for other spectra.
+JonswapParameters case_jonswap_parameters(const reference::OceanCase& ocean_case);
+
+// The fit's model μ(k; θ) = ½ (Ψ(k) + Ψ(−k)) Δkx Δky over the case's grid in FFT order (0 where
+// no energy): the case's spreading, dispersion and TMA depth factor with the JONSWAP part at θ.
+std::vector<double> jonswap_model_periodogram(const reference::OceanCase& ocean_case,
+                                              const JonswapParameters& parameters);
 
 }  // namespace swell::validation
