@@ -2,9 +2,13 @@
 
 #include <omp.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
-#include <numbers>
+#include <type_traits>
+#include <vector>
 
 #include "swell/reference/errors.hpp"
 #include "swell/reference/wave_noise.hpp"
@@ -53,8 +57,272 @@ std::complex<double> initial_amplitude(const OceanCase& ocean_case, int n, int m
   return amplitude(*ocean_case.directional_spectrum(), ocean_case, n, m);
 }
 
-// What does not change from frame to frame, per wave vector k in FFT order: the two waves
-// a = h̃0(k) travelling along +k and b = conj(h̃0(−k)) along −k, and ω(|k|).
+namespace {
+
+// sin x and cos x to about 1 ulp for |x| ≤ kPolynomialPhaseLimit, in plain arithmetic that the
+// compiler vectorizes: glibc's sincos is a scalar call per phase (28% of a 1024² fp32 frame
+// before this, docs/synthesis.md); glibc declares its vector variants (libmvec) only under
+// -ffast-math, and their scalar loop tails would round differently from the vector body.
+// Cody–Waite reduction x = q·π/2 + r with π/2 split as p1 + p2 + p3 (fdlibm's pio2_1, pio2_2,
+// pio2_2t; p1 and p2 have 33 significant bits, so q·p1 and q·p2 are exact for |q| < 2²⁰ and
+// x − q·p1 is exact by Sterbenz's lemma), then fdlibm's __kernel_sin and __kernel_cos minimax
+// polynomials on |r| ≤ π/4. The reduced r is accurate to about 1e-16 rad: no worse than ωt
+// itself, which is rounded to double before any of this. Beyond the limit (ω t > 10⁶ rad: about
+// 30 hours for the fastest wave of a 2048² grid over 1 km) frames fall back to std::sin/cos.
+constexpr double kPolynomialPhaseLimit = 1e6;  // rad; |q| < 6.4e5 < 2²⁰
+
+[[gnu::always_inline]] inline void sin_cos(double x, double& sin_x, double& cos_x) {
+  constexpr double two_over_pi = 6.36619772367581382433e-01;
+  constexpr double p1 = 1.57079632673412561417e+00;
+  constexpr double p2 = 6.07710050630396597660e-11;
+  constexpr double p3 = 2.02226624879595063154e-21;
+  constexpr double round_shift = 0x1.8p52;  // x + 1.5·2⁵² rounds x to an integer, in the low bits
+  const double shifted = x * two_over_pi + round_shift;
+  const double q = shifted - round_shift;
+  const auto quadrant = std::bit_cast<std::int64_t>(shifted);  // q mod 4 in its two low bits
+  const double r = ((x - q * p1) - q * p2) - q * p3;
+  const double z = r * r;
+  const double sin_r =
+      r + r * z *
+              (-1.66666666666666324348e-01 +
+               z * (8.33333333332248946124e-03 +
+                    z * (-1.98412698298579493134e-04 +
+                         z * (2.75573137070700676789e-06 +
+                              z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10)))));
+  const double cos_r =
+      1.0 - 0.5 * z +
+      z * z *
+          (4.16666666666666019037e-02 +
+           z * (-1.38888888888741095749e-03 +
+                z * (2.48015872894767294178e-05 +
+                     z * (-2.75573143513906633035e-07 +
+                          z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
+  // sin(qπ/2 + r), cos(qπ/2 + r) for q mod 4 = 0, 1, 2, 3: (s, c), (c, −s), (−s, −c), (−c, s).
+  const bool odd = quadrant & 1;
+  const double s = odd ? cos_r : sin_r, c = odd ? sin_r : cos_r;
+  sin_x = (quadrant & 2) ? -s : s;
+  cos_x = ((quadrant + 1) & 2) ? -c : c;
+}
+
+// The per-row kernels are compiled for three instruction sets and picked when the program
+// loads (GCC function multiversioning): swell builds without -march, and with 4 or 8 doubles
+// a vector the assembly is several times cheaper. Other compilers get the baseline build.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define SWELL_SIMD_CLONES [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
+#else
+#define SWELL_SIMD_CLONES
+#endif
+
+// What does not change from frame to frame, per entry of the half spectrum (columns
+// 0 … nx/2 of every row; FFT order): the two waves a = h̃0(k) travelling along +k and
+// b = conj(h̃0(−k)) along −k, λ/|k|, and ω(|k|). The other half follows from Hermitian
+// symmetry: ω(−k) = ω(k) and h̃(−k, t) = conj(h̃(k, t)), so each phase is computed once.
+// Structure of arrays, so that a row's loop vectorizes. For fp32, a, b and λ/|k| are stored
+// in float: the spectrum the fp32 transform takes is rounded to float anyway, and this halves
+// the memory a frame reads. ω and the phase ωt stay in double: ωt reaches 10⁴ rad and more
+// over long runs, where a float phase would be off by 10⁻³ rad.
+template <typename Real>
+struct Waves {
+  std::vector<Real> a_re, a_im, b_re, b_im, lambda_over_k;
+  void resize(std::size_t n) {
+    for (auto* v : {&a_re, &a_im, &b_re, &b_im, &lambda_over_k}) v->assign(n, Real(0));
+  }
+};
+
+// One row of the assembly: half-spectrum row j, and where its fields go.
+template <typename Real>
+struct RowTask {
+  int width = 0;  // nx/2 + 1
+  int nx = 0;
+  bool pairs = false;
+  bool polynomial = true;  // sin_cos, or std::sin/std::cos beyond its phase limit
+  double t = 0;
+  const double* omega = nullptr;  // [width]
+  const Real *a_re = nullptr, *a_im = nullptr, *b_re = nullptr, *b_im = nullptr;
+  const Real* lambda_over_k = nullptr;  // [width]
+  const Real* kx = nullptr;             // [nx]: kx of every column of a full row
+  Real ky = 0, ky_mirror = 0;           // of row j and of row (ny − j) mod ny
+  Real* out = nullptr;         // row j of the first spectrum (interleaved re, im)
+  Real* out_mirror = nullptr;  // pairs: row (ny − j) mod ny of the first spectrum
+  std::size_t plane = 0;       // Reals from one spectrum to the next
+  double *cos_phase = nullptr, *sin_phase = nullptr;  // scratch [width]
+  Real *h_re = nullptr, *h_im = nullptr;              // scratch [width]
+};
+
+// The spectra of the eight real fields at k = (kx, ky), in packing order, from h̃(k)
+// (conventions §Derived fields, λ in the displacement terms):
+//   h: 1   ∂h/∂x: i kx   ∂h/∂y: i ky   λDx: iλ kx/k   λDy: iλ ky/k
+//   λ∂Dx/∂x: −λ kx²/k   λ∂Dy/∂y: −λ ky²/k   λ∂Dx/∂y: −λ kx ky/k
+// Every field is real, so its spectrum at −k is the conjugate of its spectrum at k.
+template <typename Real>
+struct FieldSpectra {
+  Real re[kRealFields], im[kRealFields];
+};
+
+template <typename Real>
+[[gnu::always_inline]] inline FieldSpectra<Real> field_spectra(Real hr, Real hi, Real kx, Real ky,
+                                                               Real lk) {
+  const Real lkx = lk * kx, lky = lk * ky;
+  FieldSpectra<Real> f;
+  f.re[0] = hr;              f.im[0] = hi;
+  f.re[1] = -kx * hi;        f.im[1] = kx * hr;
+  f.re[2] = -ky * hi;        f.im[2] = ky * hr;
+  f.re[3] = -lkx * hi;       f.im[3] = lkx * hr;
+  f.re[4] = -lky * hi;       f.im[4] = lky * hr;
+  f.re[5] = -lkx * kx * hr;  f.im[5] = -lkx * kx * hi;
+  f.re[6] = -lky * ky * hr;  f.im[6] = -lky * ky * hi;
+  f.re[7] = -lkx * ky * hr;  f.im[7] = -lkx * ky * hi;
+  return f;
+}
+
+// Two real fields A, B per complex spectrum: the inverse transform of Â + iB̂ with Â and B̂
+// Hermitian is A + iB, so its real and imaginary parts are the two fields.
+template <typename Real>
+[[gnu::always_inline]] inline void store_pairs(const FieldSpectra<Real>& f, Real* out,
+                                               std::size_t plane, int i) {
+  for (int p = 0; p < kComplexPairs; ++p) {
+    out[p * plane + 2 * i] = f.re[2 * p] - f.im[2 * p + 1];
+    out[p * plane + 2 * i + 1] = f.im[2 * p] + f.re[2 * p + 1];
+  }
+}
+
+template <typename Real>
+[[gnu::always_inline]] inline void assemble_row_body(const RowTask<Real>& task) {
+  const int width = task.width;
+  double* __restrict c = task.cos_phase;
+  double* __restrict s = task.sin_phase;
+  const double* __restrict omega = task.omega;
+  const double t = task.t;
+  if (task.polynomial) {
+#pragma omp simd
+    for (int i = 0; i < width; ++i) sin_cos(omega[i] * t, s[i], c[i]);
+  } else {
+    for (int i = 0; i < width; ++i) {
+      c[i] = std::cos(omega[i] * t);
+      s[i] = std::sin(omega[i] * t);
+    }
+  }
+  const Real* __restrict a_re = task.a_re;
+  const Real* __restrict a_im = task.a_im;
+  const Real* __restrict b_re = task.b_re;
+  const Real* __restrict b_im = task.b_im;
+  const Real* __restrict lk = task.lambda_over_k;
+  const Real* __restrict kx = task.kx;
+  Real* __restrict h_re = task.h_re;
+  Real* __restrict h_im = task.h_im;
+  Real* __restrict out = task.out;
+  const std::size_t plane = task.plane;
+  const Real ky = task.ky;
+  // h̃ = a e^(−iωt) + b e^(+iωt) (in Real: c and s are rounded once), then the fields at k:
+  // columns 0 … nx/2 of row j.
+  const auto wave = [&](int i, Real& hr, Real& hi) {
+    const Real cr = Real(c[i]), sr = Real(s[i]);
+    hr = (a_re[i] + b_re[i]) * cr + (a_im[i] - b_im[i]) * sr;
+    hi = (a_im[i] + b_im[i]) * cr - (a_re[i] - b_re[i]) * sr;
+  };
+  if (!task.pairs) {
+#pragma omp simd
+    for (int i = 0; i < width; ++i) {
+      Real hr, hi;
+      wave(i, hr, hi);
+      const auto f = field_spectra(hr, hi, kx[i], ky, lk[i]);
+      for (int r = 0; r < kRealFields; ++r) {
+        out[r * plane + 2 * i] = f.re[r];
+        out[r * plane + 2 * i + 1] = f.im[r];
+      }
+    }
+    return;
+  }
+#pragma omp simd
+  for (int i = 0; i < width; ++i) {
+    Real hr, hi;
+    wave(i, hr, hi);
+    h_re[i] = hr;
+    h_im[i] = hi;
+    store_pairs(field_spectra(hr, hi, kx[i], ky, lk[i]), out, plane, i);
+  }
+  // The columns nx/2 + 1 … nx − 1 of the mirror row hold −k of columns nx − 1 … 1 here:
+  // h̃(−k) = conj(h̃(k)), and λ/|k| is the same.
+  Real* __restrict mirror = task.out_mirror;
+  const Real ky_mirror = task.ky_mirror;
+  const int nx = task.nx;
+#pragma omp simd
+  for (int i = width; i < nx; ++i) {
+    const int source = nx - i;
+    const auto f = field_spectra(h_re[source], -h_im[source], kx[i], ky_mirror, lk[source]);
+    store_pairs(f, mirror, plane, i);
+  }
+}
+
+SWELL_SIMD_CLONES void assemble_row(const RowTask<float>& task) { assemble_row_body(task); }
+SWELL_SIMD_CLONES void assemble_row(const RowTask<double>& task) { assemble_row_body(task); }
+
+// From the transformed spectra (eight real fields) to the six outputs: copy five, and
+// J = (1 + λ∂Dx/∂x)(1 + λ∂Dy/∂y) − (λ∂Dx/∂y)², over samples [begin, end).
+template <typename Real>
+struct UnpackTask {
+  bool pairs = false;
+  const Real* data = nullptr;  // the transformed spectra: 4 complex or 8 real planes
+  std::size_t count = 0;       // samples per field
+  Real* fields = nullptr;      // 6 planes of count
+  std::size_t begin = 0, end = 0;
+};
+
+template <typename Real>
+[[gnu::always_inline]] inline void unpack_body(const UnpackTask<Real>& task) {
+  const std::size_t n = task.count;
+  Real* __restrict h = task.fields;
+  Real* __restrict sx = h + n;
+  Real* __restrict sy = h + 2 * n;
+  Real* __restrict dx = h + 3 * n;
+  Real* __restrict dy = h + 4 * n;
+  Real* __restrict jacobian = h + 5 * n;
+  const Real* __restrict d = task.data;
+  if (task.pairs) {  // (h, ∂h/∂x), (∂h/∂y, λDx), (λDy, λ∂Dx/∂x), (λ∂Dy/∂y, λ∂Dx/∂y)
+    const Real* __restrict p0 = d;
+    const Real* __restrict p1 = d + 2 * n;
+    const Real* __restrict p2 = d + 4 * n;
+    const Real* __restrict p3 = d + 6 * n;
+#pragma omp simd
+    for (std::size_t p = task.begin; p < task.end; ++p) {
+      h[p] = p0[2 * p];
+      sx[p] = p0[2 * p + 1];
+      sy[p] = p1[2 * p];
+      dx[p] = p1[2 * p + 1];
+      dy[p] = p2[2 * p];
+      jacobian[p] = (Real(1) + p2[2 * p + 1]) * (Real(1) + p3[2 * p]) - p3[2 * p + 1] * p3[2 * p + 1];
+    }
+  } else {
+    const std::size_t bytes = (task.end - task.begin) * sizeof(Real);
+    for (int f = 0; f < 5; ++f) std::memcpy(h + f * n + task.begin, d + f * n + task.begin, bytes);
+    const Real* __restrict dxx = d + 5 * n;
+    const Real* __restrict dyy = d + 6 * n;
+    const Real* __restrict dxy = d + 7 * n;
+#pragma omp simd
+    for (std::size_t p = task.begin; p < task.end; ++p) {
+      jacobian[p] = (Real(1) + dxx[p]) * (Real(1) + dyy[p]) - dxy[p] * dxy[p];
+    }
+  }
+}
+
+SWELL_SIMD_CLONES void unpack_range(const UnpackTask<float>& task) { unpack_body(task); }
+SWELL_SIMD_CLONES void unpack_range(const UnpackTask<double>& task) { unpack_body(task); }
+
+// Packing::automatic. Frame CPU time, complex_pairs / real, ms (docs/synthesis.md: medians
+// of 5 in one run of bench/frame_bench.cpp, 2026-11-22, 2-core AMD EPYC VM, one thread):
+//            fp32 512²   1024²       2048²      fp64 512²   1024²       2048²
+//   fftw     4.98/4.70   20.6/45.3   93.8/200        8.44/10.1   35.2/77.7   167/297
+//   radix2   4.07/7.96   20.0/31.1   89.3/278        6.69/12.8   34.8/87.0   165/420
+// complex_pairs is 1.2× to 3× faster everywhere except fftw fp32 512², a tie (real/pairs 0.94
+// here, 1.19 in a second run): radix2 (like naive) runs a c2r through a full complex transform,
+// and FFTW destroys the input of a multi-dimensional c2r, so the fftw backend runs it on a
+// fresh copy each time (FFTW's own eight c2r cost about what its four c2c do). Both packings
+// compute the same N²/2 phases. real would pay only on a backend whose c2r costs less than half
+// its c2c and needs no copy; none has one, so there is nothing to choose.
+Packing automatic_packing(const Backend&) { return Packing::complex_pairs; }
+
+}  // namespace
+
 struct Synthesizer::State {
   OceanCase ocean_case;
   SynthesizerOptions options;
@@ -62,11 +330,14 @@ struct Synthesizer::State {
   std::unique_ptr<Backend> backend;
   std::unique_ptr<Plan> plan;
   int nx = 0, ny = 0;
-  // Rows of the spectra the transforms take: nx (c2c) or nx/2 + 1 (c2r).
-  int spectrum_columns = 0;
-  std::vector<std::complex<double>> forward_wave, backward_wave;  // a, b per spectrum entry
-  std::vector<double> omega;
-  std::vector<double> kx, ky, inverse_k;  // per column / per row, and 1/|k| per entry
+  int half_columns = 0;       // nx/2 + 1: the half spectrum the waves are stored for
+  int spectrum_columns = 0;   // of the spectra the transforms take: nx (c2c) or nx/2 + 1 (c2r)
+  std::vector<double> omega;  // per half-spectrum entry
+  double max_omega = 0;
+  Waves<float> waves32;       // fp32 synthesizers
+  Waves<double> waves64;      // fp64 synthesizers
+  std::vector<float> kx32, ky32;  // per column of a full row (FFT order), per row
+  std::vector<double> kx64, ky64;
   // The packed spectra, and the fields the transforms make of them (the same buffer when the
   // backend transforms in place).
   std::unique_ptr<Buffer> spectra, transformed_storage;
@@ -74,6 +345,20 @@ struct Synthesizer::State {
 
   std::size_t real_bytes() const { return real_size(options.precision); }
 
+  template <typename Real>
+  const Waves<Real>& waves() const {
+    if constexpr (std::is_same_v<Real, float>) return waves32; else return waves64;
+  }
+  template <typename Real>
+  const std::vector<Real>& kx() const {
+    if constexpr (std::is_same_v<Real, float>) return kx32; else return kx64;
+  }
+  template <typename Real>
+  const std::vector<Real>& ky() const {
+    if constexpr (std::is_same_v<Real, float>) return ky32; else return ky64;
+  }
+  template <typename Real>
+  void fill_waves(Waves<Real>& waves);
   template <typename Real>
   void assemble(double t) const;
   template <typename Real>
@@ -91,13 +376,15 @@ Synthesizer::Synthesizer(OceanCase ocean_case, SynthesizerOptions options)
     throw InvalidInput("the synthesizer runs in fp32 or fp64, not fp80");
   }
   s.backend = make_backend(s.options.backend);
-  s.packing = s.options.packing == Packing::automatic ? Packing::complex_pairs : s.options.packing;
+  s.packing = s.options.packing == Packing::automatic ? automatic_packing(*s.backend)
+                                                      : s.options.packing;
   if (s.packing == Packing::real && !s.backend->capabilities().real_transforms) {
     throw InvalidInput("backend " + s.backend->name() + " has no c2r transform; use packing complex_pairs");
   }
   const Grid& grid = s.ocean_case.grid;
   s.nx = grid.nx;
   s.ny = grid.ny;
+  s.half_columns = grid.nx / 2 + 1;
 
   TransformSpec spec;
   spec.nx = grid.nx;
@@ -112,7 +399,7 @@ Synthesizer::Synthesizer(OceanCase ocean_case, SynthesizerOptions options)
   } else {
     spec.kind = Kind::c2r;
     spec.howmany = kRealFields;
-    s.spectrum_columns = grid.nx / 2 + 1;
+    s.spectrum_columns = s.half_columns;
   }
   s.plan = s.backend->plan(spec);
   s.spectra = s.backend->allocate(spec.input_bytes());
@@ -120,31 +407,42 @@ Synthesizer::Synthesizer(OceanCase ocean_case, SynthesizerOptions options)
     s.transformed_storage = s.backend->allocate(spec.output_bytes());
   }
 
-  const auto spectrum = s.ocean_case.directional_spectrum();
-  const std::size_t entries = std::size_t(s.spectrum_columns) * s.ny;
-  s.forward_wave.assign(entries, 0.0);
-  s.backward_wave.assign(entries, 0.0);
-  s.omega.assign(entries, 0.0);
-  s.inverse_k.assign(entries, 0.0);
-  s.kx.resize(s.spectrum_columns);
-  s.ky.resize(s.ny);
-  for (int i = 0; i < s.spectrum_columns; ++i) s.kx[i] = Grid::signed_index(i, s.nx) * grid.dkx();
-  for (int j = 0; j < s.ny; ++j) s.ky[j] = Grid::signed_index(j, s.ny) * grid.dky();
+  s.kx64.resize(s.nx);
+  s.ky64.resize(s.ny);
+  for (int i = 0; i < s.nx; ++i) s.kx64[i] = Grid::signed_index(i, s.nx) * grid.dkx();
+  for (int j = 0; j < s.ny; ++j) s.ky64[j] = Grid::signed_index(j, s.ny) * grid.dky();
+  s.kx32.assign(s.kx64.begin(), s.kx64.end());
+  s.ky32.assign(s.ky64.begin(), s.ky64.end());
+  if (s.options.precision == Precision::f32) s.fill_waves(s.waves32); else s.fill_waves(s.waves64);
+}
 
-#pragma omp parallel for num_threads(s.options.threads) schedule(dynamic, 4)
-  for (int j = 0; j < s.ny; ++j) {
-    const int m = Grid::signed_index(j, s.ny);
-    for (int i = 0; i < s.spectrum_columns; ++i) {
-      const int n = Grid::signed_index(i, s.nx);
-      const std::size_t e = std::size_t(j) * s.spectrum_columns + i;
-      if (!grid.carries_energy(n, m)) continue;
-      const double k = std::hypot(s.kx[i], s.ky[j]);
-      s.forward_wave[e] = amplitude(*spectrum, s.ocean_case, n, m);
-      s.backward_wave[e] = std::conj(amplitude(*spectrum, s.ocean_case, -n, -m));
-      s.omega[e] = s.ocean_case.omega(k);
-      s.inverse_k[e] = 1.0 / k;
+template <typename Real>
+void Synthesizer::State::fill_waves(Waves<Real>& waves) {
+  const Grid& grid = ocean_case.grid;
+  const auto spectrum = ocean_case.directional_spectrum();
+  const std::size_t entries = std::size_t(half_columns) * ny;
+  waves.resize(entries);
+  omega.assign(entries, 0.0);
+  const double lambda = ocean_case.choppiness;
+#pragma omp parallel for num_threads(options.threads) schedule(dynamic, 4)
+  for (int j = 0; j < ny; ++j) {
+    const int m = Grid::signed_index(j, ny);
+    for (int i = 0; i < half_columns; ++i) {
+      const int n = Grid::signed_index(i, nx);
+      const std::size_t e = std::size_t(j) * half_columns + i;
+      if (!grid.carries_energy(n, m)) continue;  // a = b = 0, and ω = 0 keeps the phase finite
+      const double k = std::hypot(kx64[i], ky64[j]);
+      const auto a = amplitude(*spectrum, ocean_case, n, m);
+      const auto b = std::conj(amplitude(*spectrum, ocean_case, -n, -m));
+      waves.a_re[e] = Real(a.real());
+      waves.a_im[e] = Real(a.imag());
+      waves.b_re[e] = Real(b.real());
+      waves.b_im[e] = Real(b.imag());
+      waves.lambda_over_k[e] = Real(lambda / k);
+      omega[e] = ocean_case.omega(k);
     }
   }
+  for (double w : omega) max_omega = std::max(max_omega, std::abs(w));
 }
 
 Synthesizer::~Synthesizer() = default;
@@ -162,69 +460,69 @@ std::size_t Synthesizer::frame_bytes() const {
          state_->real_bytes();
 }
 
-// h̃(k, t) = a e^(−iωt) + b e^(+iωt), times each field's multiplier (conventions §Derived
-// fields, with λ in the displacement terms):
-//   h: 1   ∂h/∂x: i kx   ∂h/∂y: i ky   λDx: iλ kx/k   λDy: iλ ky/k
-//   λ∂Dx/∂x: −λ kx²/k   λ∂Dy/∂y: −λ ky²/k   λ∂Dx/∂y: −λ kx ky/k
-// Packed as A + iB, two real fields per complex spectrum: the inverse transform of Â + iB̂
-// with Â and B̂ Hermitian is a + ib, so its real and imaginary parts are the two fields.
+// Row by row of the half spectrum; with complex_pairs each row also fills the right half
+// (columns nx/2 + 1 … nx − 1) of its mirror row (ny − j) mod ny. Every entry is written by
+// exactly one row, computed the same way whatever the thread count.
 template <typename Real>
 void Synthesizer::State::assemble(double t) const {
-  using Complex = std::complex<Real>;
-  auto* out = static_cast<Complex*>(spectra->host_data());
-  const std::size_t plane = std::size_t(spectrum_columns) * ny;
-  const double lambda = ocean_case.choppiness;
+  const std::size_t plane = 2 * std::size_t(spectrum_columns) * ny;  // Reals per spectrum
+  auto* out = static_cast<Real*>(spectra->host_data());
+  const auto& w = waves<Real>();
+  const auto& kxs = kx<Real>();
+  const auto& kys = ky<Real>();
   const bool pairs = packing == Packing::complex_pairs;
-#pragma omp parallel for num_threads(options.threads) schedule(static)
-  for (int j = 0; j < ny; ++j) {
-    const double ky_j = ky[j];
-    for (int i = 0; i < spectrum_columns; ++i) {
-      const std::size_t e = std::size_t(j) * spectrum_columns + i;
-      // Phase in double: ωt reaches 10⁴ rad and more over long runs.
-      const double phase = omega[e] * t;
-      const double c = std::cos(phase), s = std::sin(phase);
-      const std::complex<double> h =
-          forward_wave[e] * std::complex<double>(c, -s) + backward_wave[e] * std::complex<double>(c, s);
-      const double kx_i = kx[i], lk = lambda * inverse_k[e];
-      if (pairs) {
-        out[e] = Complex(h * std::complex<double>(1.0 - kx_i, 0.0));
-        out[plane + e] = Complex(h * std::complex<double>(-lk * kx_i, ky_j));
-        out[2 * plane + e] = Complex(h * std::complex<double>(0.0, lk * ky_j - lk * kx_i * kx_i));
-        out[3 * plane + e] = Complex(h * std::complex<double>(-lk * ky_j * ky_j, -lk * kx_i * ky_j));
-      } else {
-        const std::complex<double> ih(-h.imag(), h.real());  // i h̃
-        out[e] = Complex(h);
-        out[plane + e] = Complex(kx_i * ih);
-        out[2 * plane + e] = Complex(ky_j * ih);
-        out[3 * plane + e] = Complex(lk * kx_i * ih);
-        out[4 * plane + e] = Complex(lk * ky_j * ih);
-        out[5 * plane + e] = Complex(-lk * kx_i * kx_i * h);
-        out[6 * plane + e] = Complex(-lk * ky_j * ky_j * h);
-        out[7 * plane + e] = Complex(-lk * kx_i * ky_j * h);
-      }
+  const bool polynomial = max_omega * std::abs(t) <= kPolynomialPhaseLimit;
+#pragma omp parallel num_threads(options.threads)
+  {
+    std::vector<double> phase(2 * std::size_t(half_columns));
+    std::vector<Real> h(2 * std::size_t(half_columns));
+    RowTask<Real> task;
+    task.width = half_columns;
+    task.nx = nx;
+    task.pairs = pairs;
+    task.polynomial = polynomial;
+    task.t = t;
+    task.kx = kxs.data();
+    task.plane = plane;
+    task.cos_phase = phase.data();
+    task.sin_phase = phase.data() + half_columns;
+    task.h_re = h.data();
+    task.h_im = h.data() + half_columns;
+#pragma omp for schedule(static)
+    for (int j = 0; j < ny; ++j) {
+      const int mirror = (ny - j) % ny;
+      const std::size_t e = std::size_t(j) * half_columns;
+      task.omega = omega.data() + e;
+      task.a_re = w.a_re.data() + e;
+      task.a_im = w.a_im.data() + e;
+      task.b_re = w.b_re.data() + e;
+      task.b_im = w.b_im.data() + e;
+      task.lambda_over_k = w.lambda_over_k.data() + e;
+      task.ky = kys[j];
+      task.ky_mirror = kys[mirror];
+      task.out = out + 2 * std::size_t(j) * spectrum_columns;
+      task.out_mirror = out + 2 * std::size_t(mirror) * spectrum_columns;
+      assemble_row(task);
     }
   }
 }
 
-// The transformed spectra hold the eight real fields; copy the five output fields and form
-// J = (1 + λ∂Dx/∂x)(1 + λ∂Dy/∂y) − (λ∂Dx/∂y)².
 template <typename Real>
 void Synthesizer::State::unpack(std::byte* fields) const {
   const std::size_t count = std::size_t(nx) * ny;
-  Real* field[6];
-  for (int f = 0; f < 6; ++f) field[f] = reinterpret_cast<Real*>(fields) + f * count;
-  const bool pairs = packing == Packing::complex_pairs;
-  const Real* data = static_cast<const Real*>(transformed().host_data());
-  // Real field r (packing order) at sample p.
-  auto value = [&](int r, std::size_t p) -> Real {
-    return pairs ? data[2 * ((r / 2) * count + p) + (r % 2)] : data[r * count + p];
-  };
-#pragma omp parallel for num_threads(options.threads) schedule(static)
-  for (std::ptrdiff_t p = 0; p < std::ptrdiff_t(count); ++p) {
-    // Packing order h, ∂h/∂x, ∂h/∂y, λDx, λDy; output order h, sx, sy, dx, dy.
-    for (int f = 0; f < 5; ++f) field[f][p] = value(f, p);
-    const Real dxx = value(5, p), dyy = value(6, p), dxy = value(7, p);
-    field[5][p] = (Real(1) + dxx) * (Real(1) + dyy) - dxy * dxy;
+  UnpackTask<Real> task;
+  task.pairs = packing == Packing::complex_pairs;
+  task.data = static_cast<const Real*>(transformed().host_data());
+  task.count = count;
+  task.fields = reinterpret_cast<Real*>(fields);
+  // Blocks of whole rows, a few per thread.
+  const std::size_t block = std::size_t(nx) * std::max(1, 4096 / nx);
+  const std::ptrdiff_t blocks = std::ptrdiff_t((count + block - 1) / block);
+#pragma omp parallel for num_threads(options.threads) schedule(static) firstprivate(task)
+  for (std::ptrdiff_t b = 0; b < blocks; ++b) {
+    task.begin = std::size_t(b) * block;
+    task.end = std::min(count, task.begin + block);
+    unpack_range(task);
   }
 }
 
