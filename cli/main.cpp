@@ -39,11 +39,13 @@ int main(int argc, char** argv) {
   actions["synth"] = swell::cli::add_synth_command(*synth);
   auto* fit = app.add_subcommand("fit", "fit JONSWAP parameters, with 95 % intervals, to frames");
   actions["fit"] = swell::cli::add_fit_command(*fit);
+  auto* gate = app.add_subcommand("gate", "judge another engine's frames against its case file");
+  actions["gate"] = swell::cli::add_gate_command(*gate);
 
   // CLI11 says only "A subcommand is required" for a misspelt one; name it instead.
   if (argc > 1 && argv[1][0] != '-' && !actions.count(argv[1])) {
     std::cerr << "swell: error: unknown subcommand '" << argv[1]
-              << "'; valid: spectrum, check, fft, synth, fit (run 'swell --help' for usage)\n";
+              << "'; valid: spectrum, check, fft, synth, fit, gate (run 'swell --help' for usage)\n";
     return 2;
   }
   try {

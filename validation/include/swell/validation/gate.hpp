@@ -1,0 +1,56 @@
+#pragma once
+// The gate: judge another engine's frames against its case file, with one family-wise
+// false-alarm rate shared by all statistical checks (docs/gate.md).
+//
+// The statistical checks that run (energy, spectrum, moments, direction, statistics — those
+// the given fields and frame count allow) share α by Bonferroni: each runs at α / (their
+// number), so a right engine fails the gate with probability ≤ α. Exact checks (Hermitian,
+// Parseval, dispersion, derived fields) are judged against rounding bounds.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "swell/reference/fields.hpp"
+#include "swell/validation/case_file.hpp"
+#include "swell/validation/check_result.hpp"
+
+namespace swell::validation {
+
+struct GateOptions {
+  double alpha = 1e-3;        // family-wise false-alarm rate of the whole gate
+  std::string input_pattern;  // replaces the case's [input] files when not empty
+};
+
+struct GateReport {
+  std::string case_path;               // the case file judged ("" when given in memory)
+  std::string subject;                 // the case's one-line description
+  int frames = 0, nx = 0, ny = 0;
+  std::vector<std::string> fields;     // field names present
+  double alpha = 0;                    // family-wise
+  double alpha_per_check = 0;          // what each statistical check ran at
+  int statistical_checks = 0;          // how many share α
+  std::vector<CheckResult> results;
+  std::vector<std::string> skipped;    // checks that could not run, with the reason
+  double fitted_scale = 1;             // free-scale cases: the engine's spectrum over the case's
+  double seconds = 0;                  // wall time of reading and judging
+  bool passed() const;
+};
+
+// Judges frames already in memory.
+GateReport run_gate(const CaseFile& case_file, const reference::FrameSequence& frames,
+                    const GateOptions& options = {});
+// Reads the case file and its frames (frame_io.hpp), then judges them. Bad input throws
+// InvalidInput naming the file and the problem.
+GateReport run_gate(const std::filesystem::path& case_file, const GateOptions& options = {});
+
+// One line per check and a verdict line, for the terminal.
+std::string render_gate(const GateReport& report);
+// {"case", "subject", "alpha", "alpha_per_check", "checks": [...], "skipped": [...], "pass"}.
+nlohmann::json gate_json(const GateReport& report);
+// JUnit XML: one <testsuite name="swell gate"> with one <testcase> per check result; a failed
+// check carries <failure message="…"> with measured, expected and bound; skipped checks are
+// <skipped/> test cases.
+std::string gate_junit(const GateReport& report);
+
+}  // namespace swell::validation
