@@ -354,6 +354,24 @@ Results check_parseval(const Analysis& a, OceanCheckReport&) {
 
 // ------------------------------------------------------------------ energy
 
+// The energy ratio an engine gets when it uses D(ω, θ)/D(ω, 0) — the spreading's shape without
+// its normalization: Σ μ/D(ω, 0) / Σ μ over the resolved waves. 0 when the case has no
+// spreading model (Phillips).
+double unnormalized_spreading_factor(const Analysis& a) {
+  const auto spectrum = a.ocean_case().directional_spectrum();
+  const auto spread = std::dynamic_pointer_cast<const reference::SpreadSpectrum>(spectrum);
+  if (!spread) return 0;
+  const auto dispersion = reference::Dispersion::finite_depth(a.ocean_case().depth, a.ocean_case().gravity);
+  double weighted = 0, total = 0;
+  for (const Wave& w : a.waves()) {
+    const double peak = spread->spreading()(dispersion.omega(w.k), 0.0);
+    if (!(peak > 0)) continue;
+    weighted += w.mu / peak;
+    total += w.mu;
+  }
+  return total > 0 ? weighted / total : 0;
+}
+
 // mean h² = Σk I(k) = Σ over the half plane of 2 I(k), I(k) ~ μ(k) Exp(1) independent: a
 // weighted sum of exponentials, whose law the saddlepoint approximation gives.
 Results check_energy(const Analysis& a, OceanCheckReport& report) {
@@ -374,6 +392,35 @@ Results check_energy(const Analysis& a, OceanCheckReport& report) {
                                    measured, ratio, law.mean(), z, p);
   if (p < alpha) {
     reason += fmt::format(": energy off by a factor {:.3g} (Hs by {:.3g})", ratio, std::sqrt(ratio));
+    // The factors engines get wrong, when the sampling range of the ratio holds one.
+    const double low = measured / law.quantile(1 - alpha / 2), high = measured / law.quantile(alpha / 2);
+    const double g = a.ocean_case().gravity, dk2 = a.grid().dkx() * a.grid().dky();
+    const std::vector<std::pair<double, std::string>> known = {
+        {2.0, "twice the energy: Tessendorf's (ξ1 + iξ2)√(P/2) without the ½ of E|h̃0|² = ½ΨΔk², "
+              "or both halves of each ±k pair counted"},
+        {0.5, "half the energy: h̃(−k) not paired as conj(h̃(k)) with only the real part kept, "
+              "or a ½ too many"},
+        {1 / dk2, fmt::format("amplitudes without Δkx Δky (the energy then scales with the patch: "
+                              "× {:.4g} here)", 1 / dk2)},
+        {std::pow(g, -1.5), "α√g instead of α g² in the spectrum (× g^(−3/2))"},
+    };
+    auto candidates = known;
+    if (const double factor = unnormalized_spreading_factor(a); factor > 0) {
+      candidates.push_back({factor, fmt::format("the spreading function not normalized (its shape "
+                                                "scaled to 1 along the mean direction: × {:.3g})",
+                                                factor)});
+    }
+    // The candidate nearest the measured ratio (in log) among those its sampling range holds.
+    double best = 1e300;
+    std::string meaning;
+    for (const auto& [factor, text] : candidates) {
+      const double distance = std::abs(std::log(factor / ratio));
+      if (factor >= low && factor <= high && distance < best) {
+        best = distance;
+        meaning = text;
+      }
+    }
+    if (!meaning.empty()) reason += " — " + meaning;
   }
   return {statistical("energy", a.subject(), measured, law.mean(), p, alpha,
                       fmt::format("p ≥ α = {:.0e} (two-sided, exact law of Σ I)", alpha),
@@ -414,6 +461,45 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
     }
   }
   const double p = stats::fisher_combined_p(p_values);
+  // In the engine's terms: a peak too low and broad (σ, γ), or a band of |k| doubled.
+  std::string shape_hint;
+  if (p < alpha) {
+    int peak_ring = 0;
+    double peak_energy = 0;
+    std::vector<double> ring_ratio(rings);
+    for (int r = 0; r < rings; ++r) {
+      const int begin = r * n / rings, end = (r + 1) * n / rings;
+      double energy = 0, observed = 0;
+      for (int i = begin; i < end; ++i) {
+        energy += order[i]->mu;
+        observed += a.periodogram0(order[i]->index);
+      }
+      ring_ratio[r] = observed / energy;  // energy-weighted: what the ring carries
+      if (energy > peak_energy) {
+        peak_energy = energy;
+        peak_ring = r;
+      }
+    }
+    int doubled = 0;
+    double lowest = 1e300, highest = 0;
+    for (double ratio : ring_ratio) {
+      doubled += std::abs(ratio - 2) < 0.3;
+      lowest = std::min(lowest, ratio);
+      highest = std::max(highest, ratio);
+    }
+    if (doubled >= 2 && lowest < 1.3) {
+      shape_hint = fmt::format(" — {} rings of |k| carry twice their energy: a band counted twice "
+                               "(overlapping cascades?)", doubled);
+    } else if (ring_ratio[peak_ring] < 0.8 && highest > 1.25 && highest < 10) {
+      shape_hint = fmt::format(" — the peak carries {:.2f}× its energy and the flanks up to {:.2f}×: "
+                               "a broader peak than the case's (σ or γ?)",
+                               ring_ratio[peak_ring], highest);
+    } else if (ring_ratio[peak_ring] > 1.25 && ring_ratio[peak_ring] < 10 && lowest < 0.8) {
+      shape_hint = fmt::format(" — the peak carries {:.2f}× its energy and the flanks down to {:.2f}×: "
+                               "a narrower peak than the case's (σ or γ?)",
+                               ring_ratio[peak_ring], lowest);
+    }
+  }
   Results out;
   out.push_back(statistical(
       "spectrum.shape", a.subject(), worst_ratio, 1.0, p, alpha,
@@ -421,7 +507,7 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
       fmt::format("periodogram/model {:.3f}…{:.3f} over {} rings of |k| ({} wave vectors); "
                   "worst ring at k = {:.4g} rad/m: {:.3f} (p = {:.2g}){}",
                   low_ratio, high_ratio, rings, n, worst_k, worst_ratio, worst_p,
-                  p < alpha ? " — the spectrum's shape differs from the case's" : "")));
+                  p < alpha ? " — the spectrum's shape differs from the case's" + shape_hint : "")));
 
   // Energy where the case puts (almost) none.
   const Grid& g = a.grid();
@@ -610,6 +696,55 @@ double best_omega(double omega0, double max_omega, const std::vector<double>& ti
   return 0.5 * (left + right);
 }
 
+struct MeasuredOmega {
+  double k = 0, omega = 0;
+};
+
+// What relation the measured ω(k) follows, in an engine developer's terms: another depth,
+// ω = g k, or a loop period that quantizes ω. Empty when none fits to 10⁻³.
+std::string explain_dispersion(const OceanCase& c, const std::vector<MeasuredOmega>& measured) {
+  if (measured.empty()) return "";
+  const double g = c.gravity;
+  auto fits = [&](const std::function<double(double)>& omega_of_k) {
+    for (const auto& m : measured) {
+      if (!(std::abs(omega_of_k(m.k) - m.omega) <= 1e-3 * m.omega)) return false;
+    }
+    return true;
+  };
+  // Depth: ω² = g k tanh(k h) solved for h wave by wave; the median, then checked against all.
+  std::vector<double> depths;
+  for (const auto& m : measured) {
+    const double x = m.omega * m.omega / (g * m.k);
+    depths.push_back(x >= 1 ? reference::kInfiniteDepth : std::atanh(x) / m.k);
+  }
+  std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+  const double depth = depths[depths.size() / 2];
+  const auto at_depth = reference::Dispersion::finite_depth(depth, g);
+  if (fits([&](double k) { return at_depth.omega(k); })) {
+    const std::string found = std::isinf(depth) ? "deep water" : fmt::format("a depth of {:.3g} m", depth);
+    const std::string said = std::isinf(c.depth) ? "deep water" : fmt::format("{:g} m", c.depth);
+    return fmt::format("the frames follow the dispersion of {}; the case says {}", found, said);
+  }
+  if (fits([&](double k) { return g * k; })) return "the frames follow ω = g k: a missing square root";
+  // A loop period T quantizes ω down to multiples of 2π/T: search T from the slowest wave's
+  // period to 10⁴ s in steps of 10⁻⁵ relative.
+  const auto unquantized = reference::Dispersion::finite_depth(c.depth, g);
+  double slowest = 1e300;
+  for (const auto& m : measured) slowest = std::min(slowest, m.omega);
+  for (double period = 2 * kPi / (2 * slowest); period <= 1e4; period *= 1 + 1e-5) {
+    if (fits([&](double k) { return reference::quantize_omega(unquantized.omega(k), period); })) {
+      return c.loop_period > 0 ? fmt::format("ω is quantized by a loop period of {:.4g} s; the case says {:g} s",
+                                             period, c.loop_period)
+                               : fmt::format("ω is quantized by a loop period of {:.4g} s the case does not declare",
+                                             period);
+    }
+  }
+  if (c.loop_period > 0 && fits([&](double k) { return unquantized.omega(k); })) {
+    return fmt::format("ω is not quantized by the case's loop period of {:g} s", c.loop_period);
+  }
+  return "";
+}
+
 Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
   if (a.times().size() < 3) {
     report.skipped.push_back("dispersion: needs ≥ 3 frames (the fit has 2 complex unknowns per k)");
@@ -645,10 +780,12 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
   if (strongest.size() > 24) strongest.resize(24);
   const auto& series = a.wave_series();
   std::vector<std::pair<double, double>> ratios;  // (ω measured / ω case, energy)
+  std::vector<MeasuredOmega> measured;
   for (const WaveFit* f : strongest) {
     const std::size_t w = std::size_t(f->wave - a.waves().data());
     const double omega = best_omega(f->wave->omega, max_omega, a.times(), series[w]);
     ratios.push_back({omega / f->wave->omega, f->energy});
+    measured.push_back({f->wave->k, omega});
   }
   double ratio = 1;
   if (!ratios.empty()) {
@@ -667,7 +804,11 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
   if (fraction > bound) {
     diagnosis = " — the waves do not evolve as the case's dispersion says";
     if (!ratios.empty() && std::abs(ratio - 1) > 1e-3) {
-      diagnosis += fmt::format(" (ω is {:.3f}× the case's)", ratio);
+      diagnosis += fmt::format(" (ω is {:.3f}× the case's", ratio);
+      const std::string explanation = explain_dispersion(a.ocean_case(), measured);
+      diagnosis += explanation.empty() ? ")" : "; " + explanation + ")";
+    } else if (!ratios.empty()) {
+      diagnosis += " (ω is right: the amplitudes change from frame to frame)";
     }
   }
   out.push_back(bounded(
@@ -872,22 +1013,31 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
                             fmt::format("excess kurtosis of heights {:.3g} (z = {:.2f}){}", kurtosis,
                                         z_kurt, p_kurt < alpha ? " — heights are not Gaussian" : "")));
 
-  // Gaussian amplitudes: u = I/μ ~ Exp(1) independently; Anderson–Darling with known law.
-  // (With a fitted free scale the law's scale is estimated; the known-law p-value is then
-  // conservative: Stephens 1974, case 3 critical values are lower.)
-  std::vector<double> cdf, log_survival;
+  // Gaussian amplitudes: u = I/μ are independent exponentials. Anderson–Darling against the
+  // exponential law with its scale estimated (mean u), so that this part judges the shape of
+  // the law only — an energy error is the energy check's to name.
+  std::vector<double> u;
+  double u_sum = 0;
   for (const Wave& w : a.waves()) {
-    const double u = a.periodogram0(w.index) / w.mu;
-    cdf.push_back(-std::expm1(-u));
-    log_survival.push_back(-u);
+    u.push_back(a.periodogram0(w.index) / w.mu);
+    u_sum += u.back();
+  }
+  const double u_mean = u_sum / double(u.size());
+  std::vector<double> cdf, log_survival;
+  for (double x : u) {
+    cdf.push_back(-std::expm1(-x / u_mean));
+    log_survival.push_back(-x / u_mean);
   }
   const double a2 = stats::anderson_darling_statistic(cdf, log_survival);
-  const double p_ad = stats::anderson_darling_p(a2, int(cdf.size()));
+  const double p_ad = stats::anderson_darling_exponential_p(a2, int(cdf.size()));
   out.push_back(statistical(
       "statistics.gaussian_amplitudes", a.subject(), a2, 1.0, p_ad, alpha,
-      fmt::format("p ≥ α = {:.1e} (Anderson–Darling, I/μ ~ Exp(1), n = {})", alpha, cdf.size()),
+      fmt::format("p ≥ α = {:.1e} (Anderson–Darling, I/μ exponential, scale fitted, n = {})", alpha,
+                  cdf.size()),
       fmt::format("A² = {:.3g} for the normalized periodogram{}", a2,
-                  p_ad < alpha ? " — the amplitudes are not complex Gaussian (uniform noise?)" : "")));
+                  p_ad < alpha ? " — the amplitudes are not complex Gaussian (|h̃|² not exponential: "
+                                 "uniform noise, or h̃0(k) and h̃0(−k) correlated?)"
+                               : "")));
 
   // Hs steady: m0(t) − m0(t0) = 4 Σ half plane Re(a b̄ (e^(−2iωt) − e^(−2iωt0))), mean 0,
   // variance 8 Σ τ+ τ− |e^(−2iωt) − e^(−2iωt0)|², plus rounding.

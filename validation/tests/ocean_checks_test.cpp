@@ -103,6 +103,55 @@ TEST(SamplingLaws, AndersonDarlingMatchesPublishedPercentagePoints) {
   for (auto [a2, p] : points) EXPECT_NEAR(stats::anderson_darling_p(a2, 100000) / p, 1.0, 0.03) << a2;
 }
 
+// Both Anderson–Darling laws fall monotonically all the way out (a statistic of 271 once got
+// p = 1 from a fitted polynomial used far outside its range).
+TEST(SamplingLaws, AndersonDarlingPValuesFallMonotonicallyToZero) {
+  for (int n : {10, 1000}) {
+    double previous_known = 1.0, previous_fitted = 1.0;
+    for (double a2 = 0.01; a2 < 1e4; a2 *= 1.01) {
+      const double known = stats::anderson_darling_p(a2, n);
+      const double fitted = stats::anderson_darling_exponential_p(a2, n);
+      ASSERT_LE(known, previous_known + 1e-3) << "A² = " << a2;
+      ASSERT_LE(fitted, previous_fitted + 1e-3) << "A² = " << a2;
+      previous_known = known;
+      previous_fitted = fitted;
+    }
+    EXPECT_LT(previous_known, 1e-12);
+    EXPECT_LT(previous_fitted, 1e-12);
+  }
+}
+
+// The estimated-scale law: its published percentage points (D'Agostino & Stephens 1986,
+// Table 4.14: A* = 1.341 at 5 %, 1.957 at 1 %) and uniform p-values in simulation.
+TEST(SamplingLaws, AndersonDarlingWithFittedScaleIsCalibrated) {
+  EXPECT_NEAR(stats::anderson_darling_exponential_p(1.341, 1 << 30), 0.05, 0.003);
+  EXPECT_NEAR(stats::anderson_darling_exponential_p(1.957, 1 << 30), 0.01, 0.0006);
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const int n = 200, trials = 20000;
+  std::vector<double> p_values;
+  for (int t = 0; t < trials; ++t) {
+    std::vector<double> x(n);
+    double mean = 0;
+    for (double& v : x) mean += v = -std::log1p(-uniform(rng));
+    mean /= n;
+    std::vector<double> cdf(n), log_survival(n);
+    for (int i = 0; i < n; ++i) {
+      cdf[i] = -std::expm1(-x[i] / mean);
+      log_survival[i] = -x[i] / mean;
+    }
+    p_values.push_back(
+        stats::anderson_darling_exponential_p(stats::anderson_darling_statistic(cdf, log_survival), n));
+  }
+  std::sort(p_values.begin(), p_values.end());
+  double d = 0;
+  for (std::size_t i = 0; i < p_values.size(); ++i) {
+    d = std::max({d, (i + 1.0) / trials - p_values[i], p_values[i] - double(i) / trials});
+  }
+  // KS at false-alarm 1e-3 allows √n D ≤ 1.95; the law's own table error adds ≈ 0.01.
+  EXPECT_LE(d, 1.95 / std::sqrt(double(trials)) + 0.01);
+}
+
 TEST(SamplingLaws, AndersonDarlingMatchesSimulationAtSmallN) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);

@@ -50,6 +50,11 @@ double anderson_darling_statistic(std::vector<double> cdf_values,
 // finite-n correction (absolute error < 2e-6 in the CDF).
 double anderson_darling_p(double a2, int n);
 
+// P(A² ≥ a) for a sample of n tested against an exponential law whose scale was estimated
+// from the sample (its mean): D'Agostino & Stephens (1986), Goodness-of-Fit Techniques,
+// Table 4.14, with the modified statistic A²(1 + 0.6/n).
+double anderson_darling_exponential_p(double a2, int n);
+
 // Fisher's method: −2 Σ log p_i ~ χ²(2k) for k independent uniform p-values; its p-value.
 double fisher_combined_p(const std::vector<double>& p_values);
 
