@@ -713,13 +713,31 @@ std::string explain_dispersion(const OceanCase& c, const std::vector<MeasuredOme
   const auto unquantized = reference::Dispersion::finite_depth(c.depth, g);
   double slowest = 1e300;
   for (const auto& m : measured) slowest = std::min(slowest, m.omega);
-  for (double period = 2 * kPi / (2 * slowest); period <= 1e4; period *= 1 + 1e-5) {
-    if (fits([&](double k) { return reference::quantize_omega(unquantized.omega(k), period); })) {
-      return c.loop_period > 0 ? fmt::format("ω is quantized by a loop period of {:.4g} s; the case says {:g} s",
-                                             period, c.loop_period)
-                               : fmt::format("ω is quantized by a loop period of {:.4g} s the case does not declare",
-                                             period);
+  auto worst_error = [&](double period) {
+    double worst = 0;
+    for (const auto& m : measured) {
+      const double predicted = reference::quantize_omega(unquantized.omega(m.k), period);
+      worst = std::max(worst, std::abs(predicted - m.omega) / m.omega);
+      if (worst > 1e-3) break;
     }
+    return worst;
+  };
+  double best_period = 0, best_error = 1e-3;
+  for (double period = 2 * kPi / (2 * slowest); period <= 1e4; period *= 1 + 1e-5) {
+    const double error = worst_error(period);
+    if (error <= best_error) {
+      best_error = error;
+      best_period = period;
+    } else if (best_period > 0 && period > best_period * 1.01) {
+      break;  // past the window of periods that fit
+    }
+  }
+  if (best_period > 0) {
+    return c.loop_period > 0
+               ? fmt::format("ω is quantized by a loop period of {:.4g} s; the case says {:g} s",
+                             best_period, c.loop_period)
+               : fmt::format("ω is quantized by a loop period of {:.4g} s the case does not declare",
+                             best_period);
   }
   if (c.loop_period > 0 && fits([&](double k) { return unquantized.omega(k); })) {
     return fmt::format("ω is not quantized by the case's loop period of {:g} s", c.loop_period);

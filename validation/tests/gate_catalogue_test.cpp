@@ -139,6 +139,36 @@ TEST(Catalogue, CoversEveryBugOfTheTestEngine) {
   }
 }
 
+// Dispersion diagnoses beyond the catalogue: frames made for another depth, or with a loop
+// period the case does not declare, are named as such.
+std::string dispersion_reason(const OceanCase& rendered, const OceanCase& declared) {
+  const auto report = swell::validation::run_gate(
+      as_case_file(declared), swell::test::render_surface(rendered), GateOptions{});
+  for (const auto& r : report.results) {
+    if (r.check == "dispersion.residual") {
+      EXPECT_FALSE(r.passed) << r.reason;
+      return r.reason;
+    }
+  }
+  ADD_FAILURE() << "no dispersion result" << describe(report);
+  return "";
+}
+
+TEST(Diagnosis, NamesTheDepthTheFramesFollow) {
+  OceanCase engine = shallow_case();
+  engine.depth = 25;
+  const auto reason = dispersion_reason(engine, shallow_case());
+  EXPECT_NE(reason.find("a depth of 25 m; the case says 10 m"), std::string::npos) << reason;
+}
+
+TEST(Diagnosis, NamesAnUndeclaredLoopPeriod) {
+  OceanCase engine = catalogue_case();
+  engine.loop_period = 40;
+  const auto reason = dispersion_reason(engine, catalogue_case());
+  EXPECT_NE(reason.find("loop period of 40"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("does not declare"), std::string::npos) << reason;
+}
+
 // The right engine of both catalogue seas passes the gate.
 TEST(Catalogue, TheRightEnginePasses) {
   for (const OceanCase& c : {catalogue_case(), shallow_case()}) {
