@@ -10,6 +10,7 @@
 #include <map>
 #include <numbers>
 #include <numeric>
+#include <span>
 
 #include "swell/impls/transform.hpp"
 #include "swell/reference/errors.hpp"
@@ -91,9 +92,13 @@ struct WaveFit {
 bool fit_two_waves(double omega, const std::vector<double>& times, const std::vector<Complex>& y,
                    Complex& a, Complex& b, double& residual) {
   const double frames = double(times.size());
+  // e^(−iωt_f) once per frame, for the normal equations and the residual (per thread: the
+  // gate runs checks concurrently).
+  thread_local std::vector<Complex> phases;
+  phases.resize(times.size());
   Complex s = 0, r1 = 0, r2 = 0;
   for (std::size_t f = 0; f < times.size(); ++f) {
-    const Complex e = std::polar(1.0, -omega * times[f]);
+    const Complex e = phases[f] = std::polar(1.0, -omega * times[f]);
     s += std::conj(e) * std::conj(e);
     r1 += std::conj(e) * y[f];
     r2 += e * y[f];
@@ -105,7 +110,7 @@ bool fit_two_waves(double omega, const std::vector<double>& times, const std::ve
   b = (frames * r2 - std::conj(s) * r1) / det;
   residual = 0;
   for (std::size_t f = 0; f < times.size(); ++f) {
-    const Complex e = std::polar(1.0, -omega * times[f]);
+    const Complex e = phases[f];
     residual += std::norm(y[f] - a * e - b * std::conj(e));
   }
   return true;
@@ -333,11 +338,20 @@ Results check_parseval(const Analysis& a, OceanCheckReport&) {
   spec.precision = impls::Precision::f64;
   const auto plan = backend->plan(spec);
   double worst = 0;
-  std::vector<Complex> in(a.count()), out(a.count());
+  // The backend's own (aligned) buffers: with other memory FFTW's execute copies through
+  // aligned temporaries on every call. A device backend's buffers are staged through the host.
+  const std::size_t bytes = a.count() * sizeof(Complex);
+  const auto in_buffer = backend->allocate(bytes), out_buffer = backend->allocate(bytes);
+  const bool on_host = in_buffer->host_data() && out_buffer->host_data();
+  std::vector<Complex> staging_in(on_host ? 0 : a.count()), staging_out(on_host ? 0 : a.count());
+  const std::span<Complex> in(on_host ? static_cast<Complex*>(in_buffer->host_data()) : staging_in.data(), a.count());
+  const std::span<Complex> out(on_host ? static_cast<Complex*>(out_buffer->host_data()) : staging_out.data(), a.count());
   for (std::size_t f = 0; f < a.frames().frames.size(); ++f) {
     const auto& h = a.frames().field(int(f), Field::height);
     std::copy(h.begin(), h.end(), in.begin());
-    plan->execute(in.data(), out.data());
+    if (!on_host) in_buffer->upload(in.data(), bytes);
+    plan->execute(*in_buffer, *out_buffer);
+    if (!on_host) out_buffer->download(out.data(), bytes);
     // Sums in long double, so that only the transform's rounding is measured.
     long double spatial = 0, spectral = 0;
     for (double x : h) spatial += (long double)x * x;
@@ -1049,12 +1063,14 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   const double m0_first = a.mean_square0();
   double worst_z = 0, hs_min = 1e300, hs_max = 0;
   int worst_frame = 0;
+  std::vector<Complex> first_phase;  // e^(−2iωt0) per wave, once
+  for (const Wave& w : a.half_plane()) first_phase.push_back(std::polar(1.0, -2 * w.omega * times[0]));
   for (std::size_t f = 1; f < times.size(); ++f) {
     const double m0 = mean_square(a.frames().field(int(f), Field::height));
     double variance = 0;
-    for (const Wave& w : a.half_plane()) {
-      const double change = std::norm(std::polar(1.0, -2 * w.omega * times[f]) -
-                                      std::polar(1.0, -2 * w.omega * times[0]));
+    for (std::size_t i = 0; i < a.half_plane().size(); ++i) {
+      const Wave& w = a.half_plane()[i];
+      const double change = std::norm(std::polar(1.0, -2 * w.omega * times[f]) - first_phase[i]);
       variance += 8 * w.tau_plus * w.tau_minus * change;
     }
     variance += std::pow(16 * a.unit_roundoff() * a.log2n() * m0_first, 2);

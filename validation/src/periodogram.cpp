@@ -1,5 +1,6 @@
 #include "swell/validation/periodogram.hpp"
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -11,19 +12,20 @@ namespace {
 
 using reference::Grid;
 
-// fp64 FFTW c2c plans by (nx, ny, direction), made once: estimate planning, as analysis runs
+// fp64 FFTW plans by (nx, ny, kind, direction), made once: estimate planning, as analysis runs
 // on arbitrary sizes and must not pay MEASURE's planning cost.
-const impls::Plan& analysis_plan(int nx, int ny, impls::Direction direction) {
+const impls::Plan& analysis_plan(int nx, int ny, impls::Kind kind, impls::Direction direction) {
   static std::mutex mutex;
   static const auto backend = impls::make_backend("fftw:planner=estimate");
-  static std::map<std::tuple<int, int, impls::Direction>, std::unique_ptr<impls::Plan>> plans;
+  static std::map<std::tuple<int, int, impls::Kind, impls::Direction>, std::unique_ptr<impls::Plan>>
+      plans;
   const std::lock_guard lock(mutex);
-  auto& plan = plans[{nx, ny, direction}];
+  auto& plan = plans[{nx, ny, kind, direction}];
   if (!plan) {
     impls::TransformSpec spec;
     spec.nx = nx;
     spec.ny = ny;
-    spec.kind = impls::Kind::c2c;
+    spec.kind = kind;
     spec.direction = direction;
     spec.precision = impls::Precision::f64;
     plan = backend->plan(spec);
@@ -31,8 +33,36 @@ const impls::Plan& analysis_plan(int nx, int ny, impls::Direction direction) {
   return *plan;
 }
 
+// Aligned scratch arrays of the calling thread, kept between calls. FFTW's plans want the
+// alignment they were planned with (else execute() goes through two more aligned copies), and
+// a fresh multi-megabyte array costs its page faults again on every call: at 512² they took as
+// long as the transform. Arrays above kKeepBytes are freed after use instead of kept.
+constexpr std::size_t kKeepBytes = std::size_t(64) << 20;
+
+class Scratch {
+ public:
+  void* get(std::size_t bytes) {
+    if (!buffer_ || buffer_->bytes() < bytes) buffer_ = std::make_unique<impls::HostBuffer>(bytes);
+    return buffer_->host_data();
+  }
+  void release_if_large() {
+    if (buffer_ && buffer_->bytes() > kKeepBytes) buffer_.reset();
+  }
+
+ private:
+  std::unique_ptr<impls::HostBuffer> buffer_;
+};
+
+Scratch& scratch(int slot) {
+  thread_local Scratch buffers[2];
+  return buffers[slot];
+}
+
 }  // namespace
 
+// A c2c transform of the real field, not r2c with the other half filled in as conjugates: the
+// Hermitian check measures how far ĥ(−k) is from conj ĥ(k), which r2c would make 0 by
+// construction. (r2c measured 20 % faster at 512²; the scratch arrays gained 3–5×.)
 std::vector<std::complex<double>> field_spectrum(const std::vector<double>& field,
                                                  const Grid& grid) {
   const std::size_t count = std::size_t(grid.nx) * grid.ny;
@@ -40,21 +70,32 @@ std::vector<std::complex<double>> field_spectrum(const std::vector<double>& fiel
     throw InvalidInput("field of " + std::to_string(field.size()) + " values for a grid of " +
                        std::to_string(grid.nx) + "×" + std::to_string(grid.ny));
   }
-  std::vector<std::complex<double>> in(field.begin(), field.end()), out(count);
-  analysis_plan(grid.nx, grid.ny, impls::Direction::forward).execute(in.data(), out.data());
+  auto* in = static_cast<std::complex<double>*>(scratch(0).get(count * sizeof(std::complex<double>)));
+  auto* out = static_cast<std::complex<double>*>(scratch(1).get(count * sizeof(std::complex<double>)));
+  std::copy(field.begin(), field.end(), in);
+  analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::forward).execute(in, out);
   const double scale = 1.0 / double(count);
-  for (auto& value : out) value *= scale;
-  return out;
+  std::vector<std::complex<double>> spectrum;
+  spectrum.reserve(count);
+  for (std::size_t e = 0; e < count; ++e) spectrum.push_back(out[e] * scale);
+  scratch(0).release_if_large();
+  scratch(1).release_if_large();
+  return spectrum;
 }
 
 std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
                                         const Grid& grid) {
   const std::size_t count = std::size_t(grid.nx) * grid.ny;
   if (spectrum.size() != count) throw InvalidInput("spectrum size does not match the grid");
-  std::vector<std::complex<double>> out(count);
-  analysis_plan(grid.nx, grid.ny, impls::Direction::inverse).execute(spectrum.data(), out.data());
-  std::vector<double> field(count);
-  for (std::size_t i = 0; i < count; ++i) field[i] = out[i].real();
+  auto* in = static_cast<std::complex<double>*>(scratch(0).get(count * sizeof(std::complex<double>)));
+  auto* out = static_cast<std::complex<double>*>(scratch(1).get(count * sizeof(std::complex<double>)));
+  std::copy(spectrum.begin(), spectrum.end(), in);
+  analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::inverse).execute(in, out);
+  std::vector<double> field;
+  field.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) field.push_back(out[i].real());
+  scratch(0).release_if_large();
+  scratch(1).release_if_large();
   return field;
 }
 
