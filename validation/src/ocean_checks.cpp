@@ -140,8 +140,8 @@ class Analysis {
     for (const auto& frame : frames.frames) times_.push_back(frame.time);
 
     const auto spectrum = c_.directional_spectrum();
-    mu_ = expected_periodogram(*spectrum, grid_);
     tau_ = expected_travelling_power(*spectrum, grid_);
+    mu_ = expected_periodogram(tau_, grid_);  // τ(k) + τ(−k): Ψ evaluated once
     spectrum0_ = field_spectrum(frames.field(0, Field::height), grid_);
     mean_square0_ = mean_square(frames.field(0, Field::height));
 

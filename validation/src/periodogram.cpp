@@ -116,9 +116,10 @@ std::vector<double> expected_travelling_power(const reference::DirectionalSpectr
   return power;
 }
 
-std::vector<double> expected_periodogram(const reference::DirectionalSpectrum& spectrum,
-                                         const Grid& grid) {
-  const auto travelling = expected_travelling_power(spectrum, grid);
+std::vector<double> expected_periodogram(const std::vector<double>& travelling, const Grid& grid) {
+  if (travelling.size() != std::size_t(grid.nx) * grid.ny) {
+    throw InvalidInput("travelling power size does not match the grid");
+  }
   std::vector<double> mu(travelling.size(), 0.0);
   for (int j = 0; j < grid.ny; ++j) {
     const int jm = (grid.ny - j) % grid.ny;  // index of −m
@@ -129,6 +130,11 @@ std::vector<double> expected_periodogram(const reference::DirectionalSpectrum& s
     }
   }
   return mu;
+}
+
+std::vector<double> expected_periodogram(const reference::DirectionalSpectrum& spectrum,
+                                         const Grid& grid) {
+  return expected_periodogram(expected_travelling_power(spectrum, grid), grid);
 }
 
 }  // namespace swell::validation

@@ -26,6 +26,9 @@ std::vector<double> expected_periodogram(const reference::DirectionalSpectrum& s
 // E|h̃0(k)|² = ½ Ψ(k) Δkx Δky: the mean power of the wave travelling along +k.
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,
                                               const reference::Grid& grid);
+// μ(k) = τ(k) + τ(−k) from the travelling power τ above, without evaluating Ψ again.
+std::vector<double> expected_periodogram(const std::vector<double>& travelling,
+                                         const reference::Grid& grid);
 
 // True for the representative of each ±k pair carrying energy: exactly one of k, −k.
 bool in_half_plane(int n, int m);
