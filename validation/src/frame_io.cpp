@@ -10,10 +10,12 @@
 #include <cmath>
 #include <complex>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <map>
 #include <memory>
 #include <sstream>
+#include <thread>
 
 #include "swell/reference/errors.hpp"
 #include "swell/validation/npy.hpp"
@@ -48,6 +50,15 @@ StoredFormat stored_format_of(const std::string& pattern, const std::string& ori
   if (ext == ".tif" || ext == ".tiff") return StoredFormat::tiff;
   if (ext == ".npy") return StoredFormat::npy;
   if (ext == ".raw") return StoredFormat::raw;
+  if (ext == ".png") {
+    // PNG holds 8- or 16-bit integers: no unit (metres? a slider's range?) and a quantization
+    // step of 2⁻⁸ or 2⁻¹⁶ of the range, below which no wave vector can be resolved.
+    throw InvalidInput(fmt::format("{}: files = \"{}\": PNG frames hold 8- or 16-bit integers, "
+                                   "which carry no unit (metres of height cannot be read from "
+                                   "them) and resolve little; write float frames instead: .exr, "
+                                   ".tif, .tiff, .npy or .raw (docs/gate.md)",
+                                   origin, pattern));
+  }
   throw InvalidInput(fmt::format("{}: files = \"{}\" has extension '{}'; swell reads .exr, .tif, "
                                  ".tiff, .npy and .raw frames",
                                  origin, pattern, ext));
@@ -235,8 +246,9 @@ double read_image_frame(const fs::path& path, StoredFormat format, const Grid& g
   const auto located = locate_channels(file, format, spec, channels);
   const std::size_t count = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny);
   double roundoff = 0;
+  int first = spec.nchannels, last = -1;
+  bool all_float = true;
   for (const auto& [field, index] : located) {
-    const std::string what = describe_field(field, spec.channelnames[index]);
     const OIIO::TypeDesc type = spec.channelformat(index);
     const double u = roundoff_of(type);
     if (u == 0) {
@@ -246,19 +258,47 @@ double read_image_frame(const fs::path& path, StoredFormat format, const Grid& g
                                      type.c_str()));
     }
     roundoff = std::max(roundoff, u);
-    std::vector<double> values(count);
+    all_float = all_float && type.basetype != OIIO::TypeDesc::DOUBLE;
+    first = std::min(first, index);
+    last = std::max(last, index);
+  }
+  // Every channel from the first wanted to the last in one read: a compressed file (EXR ZIP
+  // blocks hold all channels of 16 scanlines) is then decompressed once, not once per field.
+  // Half and float values are exact in float, which halves the buffer; double stays double.
+  const int span = last - first + 1;
+  auto read_span = [&](auto* buffer, OIIO::TypeDesc type) {
     // OpenImageIO's TIFF reader returns true for a strip it could not read, with the error
     // pending (and garbage in the buffer): an error message counts as a failure too.
-    const bool ok = input->read_image(0, 0, index, index + 1, OIIO::TypeDesc::DOUBLE, values.data());
+    const bool ok = input->read_image(0, 0, first, last + 1, type, buffer);
     std::string why = input->geterror();
     if (!ok || !why.empty()) {
       if (why.empty()) why = "unknown error";
-      throw InvalidInput(fmt::format("{}: cannot read channel '{}' (truncated or corrupt file?): "
+      std::string names;
+      for (int c = first; c <= last; ++c) {
+        names += (names.empty() ? "'" : ", '") + spec.channelnames[c] + "'";
+      }
+      throw InvalidInput(fmt::format("{}: cannot read channel{} {} (truncated or corrupt file?): "
                                      "{}",
-                                     file, spec.channelnames[index], why));
+                                     file, span == 1 ? "" : "s", names, why));
     }
-    require_finite(values, grid, file, what);
-    frame.fields[field] = std::move(values);
+  };
+  auto split = [&](const auto& pixels) {
+    for (const auto& [field, index] : located) {
+      std::vector<double> values(count);
+      const std::size_t offset = static_cast<std::size_t>(index - first);
+      for (std::size_t k = 0; k < count; ++k) values[k] = pixels[k * span + offset];
+      require_finite(values, grid, file, describe_field(field, spec.channelnames[index]));
+      frame.fields[field] = std::move(values);
+    }
+  };
+  if (all_float) {
+    std::vector<float> pixels(count * span);
+    read_span(pixels.data(), OIIO::TypeDesc::FLOAT);
+    split(pixels);
+  } else {
+    std::vector<double> pixels(count * span);
+    read_span(pixels.data(), OIIO::TypeDesc::DOUBLE);
+    split(pixels);
   }
   input->close();
   return roundoff;
@@ -569,10 +609,9 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
 
   FrameSequence sequence;
   sequence.grid = grid;
-  double roundoff = 0;
   const Field first_field = input.channels.begin()->first;
-  for (int f = 0; f < ocean.frames; ++f) {
-    FieldFrame frame;
+  auto read_frame = [&](int f, FieldFrame& frame) {
+    double roundoff = 0;
     frame.time = ocean.time(f);
     for (const auto& [field, channel] : input.channels) {
       if (!one_file_per_field(format) && field != first_field) break;  // one file for all fields
@@ -597,8 +636,40 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
       }
       roundoff = std::max(roundoff, u);
     }
-    sequence.frames.push_back(std::move(frame));
+    return roundoff;
+  };
+  // Frames are independent files: read on as many threads as OpenImageIO's "threads"
+  // attribute says (default: every hardware thread; swell gate --threads sets it), each thread
+  // taking every T-th frame. The error reported is that of the lowest frame that failed, as a
+  // sequential read would report it.
+  int threads = 1;
+  OIIO::getattribute("threads", threads);
+  threads = std::clamp(threads, 1, std::max(1, ocean.frames));
+  sequence.frames.resize(static_cast<std::size_t>(ocean.frames));
+  std::vector<double> roundoffs(sequence.frames.size(), 0.0);
+  std::vector<std::exception_ptr> errors(sequence.frames.size());
+  auto work = [&](int first) {
+    for (int f = first; f < ocean.frames; f += threads) {
+      try {
+        roundoffs[f] = read_frame(f, sequence.frames[f]);
+      } catch (...) {
+        errors[f] = std::current_exception();
+        return;  // this thread's later frames would only fail after the same one
+      }
+    }
+  };
+  if (threads == 1) {
+    work(0);
+  } else {
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+    work(0);
+    for (auto& thread : pool) thread.join();
   }
+  for (const auto& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+  const double roundoff = *std::max_element(roundoffs.begin(), roundoffs.end());
   // More frames on disk than the case says: the case and the files disagree.
   if (parsed.has_conversion) {
     const fs::path next = file_of(ocean.frames, first_field);

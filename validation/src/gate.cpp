@@ -1,1 +1,594 @@
-// placeholder: being written
+// The gate (docs/gate.md): another engine's frames judged against its case file, with one
+// family-wise false-alarm rate α shared by the statistical checks, and the verdict rendered
+// for a terminal, as JSON and as JUnit XML for CI systems.
+#include "swell/validation/gate.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <future>
+#include <thread>
+
+#include "swell/reference/errors.hpp"
+#include "swell/validation/frame_io.hpp"
+#include "swell/validation/ocean_checks.hpp"
+#include "swell/validation/report.hpp"
+
+namespace swell::validation {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using reference::Field;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+int resolved_threads(int threads) {
+  if (threads < 0) throw InvalidInput(fmt::format("threads must be ≥ 0 (got {})", threads));
+  if (threads > 0) return threads;
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+void report_progress(const GateOptions& options, const std::string& message) {
+  if (options.progress) options.progress(message);
+}
+
+// The statistical checks run_ocean_checks will run on these frames, each at its share of α:
+// energy (not with a free scale), spectrum, moments, direction (≥ 2 frames: one frame cannot
+// tell k from −k) and statistics (skewness, kurtosis and amplitudes need one frame; its
+// hs_steady part splits the check's own α when there are more). A check counted here that
+// finds nothing to judge at run time (direction when 2ω dt ≈ 0 mod 2π for every k) only makes
+// the gate more conservative.
+std::vector<std::string> statistical_checks(SpectrumScale scale, std::size_t frames) {
+  std::vector<std::string> checks;
+  if (scale != SpectrumScale::free) checks.push_back("energy");
+  checks.push_back("spectrum");
+  checks.push_back("moments");
+  if (frames >= 2) checks.push_back("direction");
+  checks.push_back("statistics");
+  return checks;
+}
+
+// ------------------------------------------------------------------ text
+
+std::string number(double x) {
+  if (std::isnan(x)) return "—";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  return fmt::format("{:.4g}", x);
+}
+
+// Display width of a UTF-8 string: code points (the symbols used here are one column each).
+std::size_t width(const std::string& s) {
+  return std::size_t(std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+}
+
+std::string pad(const std::string& s, std::size_t w) {
+  return s + std::string(w > width(s) ? w - width(s) : 0, ' ');
+}
+
+bool statistical_result(const CheckResult& r) { return !std::isnan(r.alpha); }
+
+// How the measurement is judged, in a few characters: "p 0.41 ≥ α 2.0e-04", "≤ 1.2e-13".
+std::string judgement(const CheckResult& r) {
+  if (r.check == "scale") return "reported";
+  if (statistical_result(r)) {
+    if (std::isnan(r.p_value)) {  // a set test (moments.tp): no p-value
+      return fmt::format("{} at α {:.1e}", r.passed ? "in set" : "outside set", r.alpha);
+    }
+    return fmt::format("p {:.2g} {} α {:.1e}", r.p_value, r.p_value >= r.alpha ? "≥" : "<",
+                       r.alpha);
+  }
+  return fmt::format("{} {:.2g}", r.passed ? "≤" : ">", r.tolerance);
+}
+
+// "dispersion: needs ≥ 3 frames (…)" → {"dispersion", "needs ≥ 3 frames (…)"}.
+std::pair<std::string, std::string> split_skipped(const std::string& entry) {
+  const auto colon = entry.find(": ");
+  if (colon == std::string::npos) return {entry, ""};
+  return {entry.substr(0, colon), entry.substr(colon + 2)};
+}
+
+std::string failed_names(const GateReport& report) {
+  std::string names;
+  for (const auto& r : report.results) {
+    if (!r.passed) names += (names.empty() ? "" : ", ") + r.check;
+  }
+  return names;
+}
+
+int failed_count(const GateReport& report) {
+  return int(std::count_if(report.results.begin(), report.results.end(),
+                           [](const CheckResult& r) { return !r.passed; }));
+}
+
+// ------------------------------------------------------------------ XML
+
+// Length of the well-formed UTF-8 sequence at s (1 for ASCII), 0 when malformed: a lead byte
+// with its continuation bytes, no overlong form, no surrogate, nothing above U+10FFFF.
+std::size_t utf8_length(const unsigned char* s, std::size_t available,
+                        char32_t* code_point = nullptr) {
+  const unsigned char c = s[0];
+  std::size_t length = 0;
+  char32_t code = 0;
+  if (c < 0x80) {
+    length = 1;
+    code = c;
+  } else if (c >= 0xC2 && c <= 0xDF) {
+    length = 2;
+    code = c & 0x1F;
+  } else if (c >= 0xE0 && c <= 0xEF) {
+    length = 3;
+    code = c & 0x0F;
+  } else if (c >= 0xF0 && c <= 0xF4) {
+    length = 4;
+    code = c & 0x07;
+  }
+  if (length == 0 || length > available) return 0;
+  for (std::size_t k = 1; k < length; ++k) {
+    if ((s[k] & 0xC0) != 0x80) return 0;
+    code = (code << 6) | (s[k] & 0x3F);
+  }
+  const char32_t smallest = length == 1 ? 0 : length == 2 ? 0x80 : length == 3 ? 0x800 : 0x10000;
+  if (code < smallest || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return 0;
+  if (code_point) *code_point = code;
+  return length;
+}
+
+// Valid XML 1.0 character data from any byte string: markup characters escaped, control
+// characters other than tab, newline and carriage return dropped (XML 1.0 cannot hold them,
+// not even as references), U+FFFE/U+FFFF dropped, and malformed UTF-8 replaced by U+FFFD.
+std::string xml_escape(const std::string& text, bool in_attribute = true) {
+  std::string out;
+  out.reserve(text.size() + 16);
+  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
+  const std::size_t n = text.size();
+  for (std::size_t i = 0; i < n;) {
+    char32_t code = 0;
+    const std::size_t length = utf8_length(s + i, n - i, &code);
+    if (length == 0) {
+      out += "\xEF\xBF\xBD";  // U+FFFD for the one bad byte; resynchronize on the next
+      ++i;
+      continue;
+    }
+    switch (code) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      // In attribute values as references (a parser would normalize them to spaces).
+      case '\t': out += in_attribute ? "&#9;" : "\t"; break;
+      case '\n': out += in_attribute ? "&#10;" : "\n"; break;
+      case '\r': out += "&#13;"; break;  // else read back as a newline
+      default:
+        // Other C0 controls, U+FFFE and U+FFFF are not XML 1.0 characters.
+        if (code >= 0x20 && code != 0xFFFE && code != 0xFFFF) out.append(text, i, length);
+    }
+    i += length;
+  }
+  return out;
+}
+
+// Valid UTF-8 of any byte string (malformed bytes → U+FFFD), for JSON, which must be UTF-8.
+std::string valid_utf8(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
+  const std::size_t n = text.size();
+  for (std::size_t i = 0; i < n;) {
+    const std::size_t length = utf8_length(s + i, n - i);
+    if (length == 0) {
+      out += "\xEF\xBF\xBD";
+      ++i;
+    } else {
+      out.append(text, i, length);
+      i += length;
+    }
+  }
+  return out;
+}
+
+std::string attribute(const std::string& name, const std::string& value) {
+  return " " + name + "=\"" + xml_escape(value) + "\"";
+}
+
+// The failure message of a result: measured, expected and the bound (or p against α).
+std::string failure_message(const CheckResult& r) {
+  std::string bound;
+  if (statistical_result(r)) {
+    bound = std::isnan(r.p_value) ? fmt::format("set test at α = {:.3g}", r.alpha)
+                                  : fmt::format("p = {:.3g} < α = {:.3g}", r.p_value, r.alpha);
+  } else {
+    bound = fmt::format("bound {:.3g}", r.tolerance);
+  }
+  return fmt::format("{}: measured {}, expected {}, {}: {}", r.check, number(r.measured),
+                     number(r.expected), bound, r.reason);
+}
+
+// ------------------------------------------------------------------ reading
+
+// What the gate reads: the height of every frame (what every check but `derived` uses), and
+// every field of the first and the last frame (the two frames `derived` compares). `all` holds
+// the heights with the other fields on its first and last frames; `ends` the first and last
+// frames alone, every field (both frames, in order; one when the case has one frame).
+struct GateFrames {
+  reference::FrameSequence all, ends;
+};
+
+// A file name as a pattern that names just that file: '%' doubled.
+std::string literal_pattern(const std::string& name) {
+  std::string out;
+  for (char c : name) out += c == '%' ? std::string("%%") : std::string(1, c);
+  return out;
+}
+
+GateFrames read_gate_frames(const CaseFile& case_file, const std::string& pattern_override,
+                            int threads) {
+  const auto& channels = case_file.input.channels;
+  const int count = case_file.ocean.frames;
+  GateFrames out;
+  // Nothing to save: read the frames as they are.
+  if (count <= 2 || channels.size() <= 1 || !channels.count(Field::height)) {
+    out.all = read_frames(case_file, pattern_override);
+    out.ends = out.all;
+    if (count > 2) out.ends.frames.erase(out.ends.frames.begin() + 1, out.ends.frames.end() - 1);
+    return out;
+  }
+  // Every frame's height (this also checks every frame file exists, and that there is none
+  // beyond the case's frames) ...
+  CaseFile heights = case_file;
+  heights.input.channels = {{Field::height, channels.at(Field::height)}};
+  out.all = read_frames(heights, pattern_override);
+  // ... the other fields' files of the frames between exist (.npy and .raw hold one file per
+  // field; EXR and TIFF frames hold them all in the file just read) ...
+  const std::string pattern = pattern_override.empty() ? case_file.input.files : pattern_override;
+  std::string extension = std::filesystem::path(pattern).extension().string();
+  for (auto& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".npy" || extension == ".raw") {
+    for (int f = 1; f + 1 < count; ++f) {
+      for (const auto& [field, channel] : channels) {
+        const std::string name = frame_file_name(pattern, f, channel);
+        const std::filesystem::path path =
+            pattern_override.empty() ? case_file.directory / name : std::filesystem::path(name);
+        std::error_code error;
+        if (!std::filesystem::exists(path, error)) {
+          throw InvalidInput(fmt::format("{}: missing frame file (frame {} of {}, {})",
+                                         path.string(), f, count, reference::field_name(field)));
+        }
+      }
+    }
+  }
+  // ... and every field of the two end frames, each read as a one-frame case whose pattern
+  // names that frame's file.
+  auto read_one = [&](int f) {
+    CaseFile one = case_file;
+    one.ocean.frames = 1;
+    one.ocean.t0 = case_file.ocean.time(f);
+    const std::string file = literal_pattern(frame_file_name(pattern, f));
+    if (pattern_override.empty()) one.input.files = file;
+    return read_frames(one, pattern_override.empty() ? "" : file);
+  };
+  // The two at once when there are threads for it.
+  std::future<reference::FrameSequence> last;
+  if (threads > 1) last = std::async(std::launch::async, read_one, count - 1);
+  std::vector<reference::FrameSequence> read(2);
+  read[0] = read_one(0);
+  read[1] = threads > 1 ? last.get() : read_one(count - 1);
+  out.ends.grid = out.all.grid;
+  double roundoff = out.all.unit_roundoff;
+  for (int e = 0; e < 2; ++e) {
+    auto& frame = read[e].frames[0];
+    roundoff = std::max(roundoff, read[e].unit_roundoff);
+    auto& target = out.all.frames[e == 0 ? 0 : std::size_t(count - 1)];
+    target.fields = frame.fields;
+    target.imaginary = frame.imaginary;
+    out.ends.frames.push_back(std::move(frame));
+  }
+  out.all.unit_roundoff = roundoff;
+  out.ends.unit_roundoff = roundoff;
+  return out;
+}
+
+// ------------------------------------------------------------------ judging
+
+// The checks in groups that run concurrently, each group through run_ocean_checks (its own
+// analysis of the case: μ(k) and the first frame's spectrum, about 7 % of the work at 512²).
+// dispersion and direction share the per-wave fits over all frames; derived needs only the
+// end frames. Costliest first: at 512² × 64 frames the first group takes about as long as
+// the other two together, so two threads finish together.
+struct CheckGroup {
+  std::vector<std::string> checks;
+  bool ends_only = false;  // runs on the two end frames
+};
+
+const std::vector<CheckGroup>& check_groups() {
+  static const std::vector<CheckGroup> groups = {
+      {{"hermitian", "parseval", "energy", "spectrum", "moments", "statistics"}, false},
+      {{"dispersion", "direction"}, false},
+      {{"derived"}, true}};
+  return groups;
+}
+
+// Position of a result's check ("moments.tp" → moments) in the order run_ocean_checks runs them.
+std::size_t check_order(const std::string& name) {
+  static const auto names = ocean_check_names();
+  const std::string group = name.substr(0, name.find_first_of(".:"));
+  const auto it = std::find(names.begin(), names.end(), group);
+  return it == names.end() ? names.size() : std::size_t(it - names.begin());
+}
+
+GateReport judge(const CaseFile& case_file, const reference::FrameSequence& frames,
+                 const reference::FrameSequence& ends, const GateOptions& options,
+                 Clock::time_point start) {
+  if (!(options.alpha > 0 && options.alpha < 1)) {
+    throw InvalidInput(fmt::format("alpha (the gate's family-wise false-alarm rate) must be in "
+                                   "(0, 1) (got {:g})",
+                                   options.alpha));
+  }
+  const int threads = resolved_threads(options.threads);
+  GateReport report;
+  report.subject = case_file.ocean.describe();
+  report.frames = int(frames.frames.size());
+  report.nx = frames.grid.nx;
+  report.ny = frames.grid.ny;
+  for (Field field : reference::kAllFields) {
+    if (ends.has(field)) report.fields.push_back(reference::field_name(field));
+  }
+  const auto shared = statistical_checks(case_file.scale, frames.frames.size());
+  report.alpha = options.alpha;
+  report.statistical_checks = int(shared.size());
+  report.alpha_per_check = options.alpha / double(shared.size());
+
+  OceanCheckOptions check_options;
+  check_options.alpha = report.alpha_per_check;
+  check_options.free_scale = case_file.scale == SpectrumScale::free;
+  report_progress(options, fmt::format("judging {} frame{} of {}×{}…", report.frames,
+                                       report.frames == 1 ? "" : "s", report.nx, report.ny));
+
+  // Bad input (a grid that does not match, no height field) fails every group alike; the
+  // first group's error is thrown.
+  const auto& groups = check_groups();
+  std::vector<OceanCheckReport> parts(groups.size());
+  std::vector<std::exception_ptr> errors(groups.size());
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t g; (g = next++) < groups.size();) {
+      try {
+        parts[g] = run_ocean_checks(case_file.ocean, groups[g].ends_only ? ends : frames,
+                                    check_options, groups[g].checks);
+      } catch (...) {
+        errors[g] = std::current_exception();
+      }
+    }
+  };
+  {
+    std::vector<std::thread> pool;
+    for (int t = 1; t < std::min<int>(threads, int(groups.size())); ++t) pool.emplace_back(work);
+    work();
+    for (auto& thread : pool) thread.join();
+  }
+  for (const auto& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+  // Merged in run_ocean_checks' order; with a free scale each group reports the same fitted
+  // scale (from frame 0), kept once.
+  bool have_scale = false;
+  for (auto& part : parts) {
+    for (auto& result : part.results) {
+      if (result.check == "scale") {
+        if (have_scale) continue;
+        have_scale = true;
+      }
+      report.results.push_back(std::move(result));
+    }
+    for (auto& entry : part.skipped) report.skipped.push_back(std::move(entry));
+  }
+  report.fitted_scale = parts.front().fitted_scale;
+  std::stable_sort(report.results.begin(), report.results.end(),
+                   [](const CheckResult& x, const CheckResult& y) {
+                     const bool x_scale = x.check == "scale", y_scale = y.check == "scale";
+                     if (x_scale != y_scale) return x_scale;
+                     return check_order(x.check) < check_order(y.check);
+                   });
+  std::stable_sort(report.skipped.begin(), report.skipped.end(),
+                   [](const std::string& x, const std::string& y) {
+                     return check_order(x) < check_order(y);
+                   });
+  report.seconds = seconds_since(start);
+  return report;
+}
+
+}  // namespace
+
+bool GateReport::passed() const {
+  return std::all_of(results.begin(), results.end(), [](const CheckResult& r) { return r.passed; });
+}
+
+GateReport run_gate(const CaseFile& case_file, const reference::FrameSequence& frames,
+                    const GateOptions& options) {
+  return judge(case_file, frames, frames, options, Clock::now());
+}
+
+GateReport run_gate(const std::filesystem::path& case_path, const GateOptions& options) {
+  const auto start = Clock::now();
+  const int threads = resolved_threads(options.threads);
+  const CaseFile case_file = read_case_file(case_path);
+  // Frames are read on OpenImageIO's "threads" (read_frames reads frames in parallel), and
+  // OpenEXR decompresses a file's blocks on its own pool.
+  OIIO::attribute("threads", threads);
+  OIIO::attribute("exr_threads", threads);
+  report_progress(options,
+                  fmt::format("reading {} frame{} of {}×{}…", case_file.ocean.frames,
+                              case_file.ocean.frames == 1 ? "" : "s", case_file.ocean.grid.nx,
+                              case_file.ocean.grid.ny));
+  const GateFrames frames = read_gate_frames(case_file, options.input_pattern, threads);
+  const double reading = seconds_since(start);
+  GateReport report = judge(case_file, frames.all, frames.ends, options, start);
+  report.case_path = case_path.string();
+  report.read_seconds = reading;
+  return report;
+}
+
+std::string render_gate(const GateReport& report) {
+  std::string out = fmt::format("swell gate: {}\n", report.subject);
+  std::string fields;
+  for (const auto& f : report.fields) fields += (fields.empty() ? "" : ", ") + f;
+  out += fmt::format("{}{} frame{} of {}×{}; fields: {}\n",
+                     report.case_path.empty() ? "" : "case " + report.case_path + "; ",
+                     report.frames, report.frames == 1 ? "" : "s", report.nx, report.ny,
+                     fields.empty() ? "none" : fields);
+  out += fmt::format("family-wise α = {:.3g}, shared by {} statistical checks: each at α = {:.3g}\n\n",
+                     report.alpha, report.statistical_checks, report.alpha_per_check);
+
+  struct Row {
+    std::string verdict, check, measured, expected, judged, reason;
+  };
+  std::vector<Row> rows;
+  for (const auto& r : report.results) {
+    rows.push_back({r.passed ? "PASS" : "FAIL", r.check, number(r.measured), number(r.expected),
+                    judgement(r), r.reason});
+  }
+  for (const auto& entry : report.skipped) {
+    const auto [check, why] = split_skipped(entry);
+    rows.push_back({"SKIP", check, "", "", "", why});
+  }
+  std::size_t w_check = 5, w_measured = 8, w_expected = 8, w_judged = 6;
+  for (const auto& row : rows) {
+    w_check = std::max(w_check, width(row.check));
+    w_measured = std::max(w_measured, width(row.measured));
+    w_expected = std::max(w_expected, width(row.expected));
+    w_judged = std::max(w_judged, width(row.judged));
+  }
+  out += fmt::format("{}  {}  {}  {}  {}  {}\n", pad("", 4), pad("check", w_check),
+                     pad("measured", w_measured), pad("expected", w_expected),
+                     pad("judged", w_judged), "reason");
+  for (const auto& row : rows) {
+    out += fmt::format("{}  {}  {}  {}  {}  {}\n", row.verdict, pad(row.check, w_check),
+                       pad(row.measured, w_measured), pad(row.expected, w_expected),
+                       pad(row.judged, w_judged), row.reason);
+  }
+  const int failed = failed_count(report);
+  const int total = int(report.results.size());
+  std::string skipped = report.skipped.empty()
+                            ? std::string()
+                            : fmt::format(", {} skipped", report.skipped.size());
+  if (failed == 0) {
+    out += fmt::format("\nverdict: PASS — {} check{} passed{}; family-wise α = {:.3g} ({:.2f} s)\n",
+                       total, total == 1 ? "" : "s", skipped, report.alpha, report.seconds);
+  } else {
+    out += fmt::format("\nverdict: FAIL — {} of {} checks failed ({}){}; family-wise α = {:.3g} "
+                       "({:.2f} s)\n",
+                       failed, total, failed_names(report), skipped, report.alpha, report.seconds);
+  }
+  return out;
+}
+
+nlohmann::json gate_json(const GateReport& report) {
+  // Strings as valid UTF-8: a case path may hold any bytes, and JSON cannot.
+  auto checks = to_json(report.results);
+  for (auto& check : checks["checks"]) {
+    for (auto& [key, value] : check.items()) {
+      if (value.is_string()) value = valid_utf8(value.get<std::string>());
+    }
+  }
+  auto skipped = nlohmann::json::array();
+  for (const auto& entry : report.skipped) {
+    const auto [check, why] = split_skipped(entry);
+    skipped.push_back({{"check", valid_utf8(check)}, {"reason", valid_utf8(why)}});
+  }
+  return {{"case", valid_utf8(report.case_path)},
+          {"subject", valid_utf8(report.subject)},
+          {"frames", report.frames},
+          {"nx", report.nx},
+          {"ny", report.ny},
+          {"fields", report.fields},
+          {"alpha", json_number(report.alpha)},
+          {"alpha_per_check", json_number(report.alpha_per_check)},
+          {"statistical_checks", report.statistical_checks},
+          {"fitted_scale", json_number(report.fitted_scale)},
+          {"checks", checks["checks"]},
+          {"skipped", skipped},
+          {"passed", checks["passed"]},
+          {"failed", checks["failed"]},
+          {"seconds", json_number(report.seconds)},
+          {"pass", report.passed()}};
+}
+
+std::string gate_junit(const GateReport& report) {
+  const int failed = failed_count(report);
+  const int tests = int(report.results.size() + report.skipped.size());
+  const std::string time = fmt::format("{:.3f}", report.seconds);
+  std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  out += "<testsuites" + attribute("name", "swell gate") + attribute("tests", std::to_string(tests)) +
+         attribute("failures", std::to_string(failed)) + attribute("errors", "0") +
+         attribute("skipped", std::to_string(report.skipped.size())) + attribute("time", time) +
+         ">\n";
+  out += "  <testsuite" + attribute("name", "swell gate") +
+         attribute("tests", std::to_string(tests)) + attribute("failures", std::to_string(failed)) +
+         attribute("errors", "0") + attribute("skipped", std::to_string(report.skipped.size())) +
+         attribute("time", time) + ">\n";
+  out += "    <properties>\n";
+  auto property = [&](const std::string& name, const std::string& value) {
+    out += "      <property" + attribute("name", name) + attribute("value", value) + "/>\n";
+  };
+  property("case", report.case_path);
+  property("subject", report.subject);
+  property("frames", fmt::format("{} of {}x{}", report.frames, report.nx, report.ny));
+  property("alpha", fmt::format("{:g}", report.alpha));
+  property("alpha_per_check", fmt::format("{:g}", report.alpha_per_check));
+  property("statistical_checks", std::to_string(report.statistical_checks));
+  out += "    </properties>\n";
+  for (const auto& r : report.results) {
+    const std::string group = r.check.substr(0, r.check.find('.'));
+    out += "    <testcase" + attribute("classname", "swell.gate." + group) +
+           attribute("name", r.check) + attribute("time", "0");
+    if (r.passed) {
+      out += ">\n      <system-out>" + xml_escape(r.reason + " (" + r.criterion + ")", false) +
+             "</system-out>\n    </testcase>\n";
+      continue;
+    }
+    const std::string message = failure_message(r);
+    out += ">\n      <failure" + attribute("message", message) + attribute("type", r.check) + ">" +
+           xml_escape(fmt::format("{}\nsubject: {}\nmeasured: {}\nexpected: {}\ncriterion: {}\n"
+                                  "p-value: {}\nalpha: {}\nreason: {}",
+                                  r.check, r.subject, number(r.measured), number(r.expected),
+                                  r.criterion, number(r.p_value), number(r.alpha), r.reason),
+                      false) +
+           "</failure>\n    </testcase>\n";
+  }
+  for (const auto& entry : report.skipped) {
+    const auto [check, why] = split_skipped(entry);
+    const std::string group = check.substr(0, check.find('.'));
+    out += "    <testcase" + attribute("classname", "swell.gate." + group) +
+           attribute("name", check) + attribute("time", "0") + ">\n      <skipped" +
+           attribute("message", why) + "/>\n    </testcase>\n";
+  }
+  out += "  </testsuite>\n</testsuites>\n";
+  return out;
+}
+
+std::string gate_junit_error(const std::string& case_path, const std::string& message) {
+  std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  const std::string counts = attribute("tests", "1") + attribute("failures", "0") +
+                             attribute("errors", "1") + attribute("skipped", "0") +
+                             attribute("time", "0");
+  out += "<testsuites" + attribute("name", "swell gate") + counts + ">\n";
+  out += "  <testsuite" + attribute("name", "swell gate") + counts + ">\n";
+  out += "    <properties>\n      <property" + attribute("name", "case") +
+         attribute("value", case_path) + "/>\n    </properties>\n";
+  out += "    <testcase" + attribute("classname", "swell.gate") + attribute("name", "input") +
+         attribute("time", "0") + ">\n      <error" + attribute("message", message) +
+         attribute("type", "bad input") + ">" + xml_escape(message, false) +
+         "</error>\n    </testcase>\n";
+  out += "  </testsuite>\n</testsuites>\n";
+  return out;
+}
+
+}  // namespace swell::validation

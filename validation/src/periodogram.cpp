@@ -11,6 +11,7 @@ namespace swell::validation {
 namespace {
 
 using reference::Grid;
+using Complex = std::complex<double>;
 
 // fp64 FFTW plans by (nx, ny, kind, direction), made once: estimate planning, as analysis runs
 // on arbitrary sizes and must not pay MEASURE's planning cost.
@@ -70,8 +71,8 @@ std::vector<std::complex<double>> field_spectrum(const std::vector<double>& fiel
     throw InvalidInput("field of " + std::to_string(field.size()) + " values for a grid of " +
                        std::to_string(grid.nx) + "×" + std::to_string(grid.ny));
   }
-  auto* in = static_cast<std::complex<double>*>(scratch(0).get(count * sizeof(std::complex<double>)));
-  auto* out = static_cast<std::complex<double>*>(scratch(1).get(count * sizeof(std::complex<double>)));
+  auto* in = static_cast<Complex*>(scratch(0).get(count * sizeof(Complex)));
+  auto* out = static_cast<Complex*>(scratch(1).get(count * sizeof(Complex)));
   std::copy(field.begin(), field.end(), in);
   analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::forward).execute(in, out);
   const double scale = 1.0 / double(count);
@@ -87,8 +88,8 @@ std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>&
                                         const Grid& grid) {
   const std::size_t count = std::size_t(grid.nx) * grid.ny;
   if (spectrum.size() != count) throw InvalidInput("spectrum size does not match the grid");
-  auto* in = static_cast<std::complex<double>*>(scratch(0).get(count * sizeof(std::complex<double>)));
-  auto* out = static_cast<std::complex<double>*>(scratch(1).get(count * sizeof(std::complex<double>)));
+  auto* in = static_cast<Complex*>(scratch(0).get(count * sizeof(Complex)));
+  auto* out = static_cast<Complex*>(scratch(1).get(count * sizeof(Complex)));
   std::copy(spectrum.begin(), spectrum.end(), in);
   analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::inverse).execute(in, out);
   std::vector<double> field;

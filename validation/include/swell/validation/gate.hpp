@@ -7,6 +7,7 @@
 // number), so a right engine fails the gate with probability ≤ α. Exact checks (Hermitian,
 // Parseval, dispersion, derived fields) are judged against rounding bounds.
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -20,6 +21,13 @@ namespace swell::validation {
 struct GateOptions {
   double alpha = 1e-3;        // family-wise false-alarm rate of the whole gate
   std::string input_pattern;  // replaces the case's [input] files when not empty
+  // Threads that read frames and run the checks (0: every hardware thread); the verdict does
+  // not depend on it. run_gate(path) sets OpenImageIO's global "threads" and "exr_threads"
+  // attributes to it.
+  int threads = 0;
+  // Called with a one-line message ("reading 64 frames of 512×512…") as the gate goes; unset:
+  // silent. The CLI prints them on standard error.
+  std::function<void(const std::string&)> progress;
 };
 
 struct GateReport {
@@ -34,6 +42,7 @@ struct GateReport {
   std::vector<std::string> skipped;    // checks that could not run, with the reason
   double fitted_scale = 1;             // free-scale cases: the engine's spectrum over the case's
   double seconds = 0;                  // wall time of reading and judging
+  double read_seconds = 0;             // of which reading the case and its frames
   bool passed() const;
 };
 
@@ -41,16 +50,25 @@ struct GateReport {
 GateReport run_gate(const CaseFile& case_file, const reference::FrameSequence& frames,
                     const GateOptions& options = {});
 // Reads the case file and its frames (frame_io.hpp), then judges them. Bad input throws
-// InvalidInput naming the file and the problem.
+// InvalidInput naming the file and the problem. Only what the checks use is read: the height
+// of every frame, and the other fields of the first and the last frame (the two the derived
+// check compares); for one file per field (.npy, .raw) the other frames' files must exist.
 GateReport run_gate(const std::filesystem::path& case_file, const GateOptions& options = {});
 
 // One line per check and a verdict line, for the terminal.
 std::string render_gate(const GateReport& report);
-// {"case", "subject", "alpha", "alpha_per_check", "checks": [...], "skipped": [...], "pass"}.
+// {"case", "subject", "frames", "nx", "ny", "fields", "alpha", "alpha_per_check",
+//  "statistical_checks", "fitted_scale", "checks": [report.hpp's to_json entries],
+//  "skipped": [{"check", "reason"}], "passed", "failed", "seconds", "pass"}; strings as valid
+// UTF-8 (malformed bytes become U+FFFD), non-finite numbers null.
 nlohmann::json gate_json(const GateReport& report);
-// JUnit XML: one <testsuite name="swell gate"> with one <testcase> per check result; a failed
-// check carries <failure message="…"> with measured, expected and bound; skipped checks are
-// <skipped/> test cases.
+// JUnit XML: one <testsuite name="swell gate"> (inside <testsuites>) with one <testcase> per
+// check result; a failed check carries <failure message="…"> with measured, expected and bound;
+// skipped checks are <skipped/> test cases. Valid XML 1.0 whatever the strings hold: markup
+// escaped, control characters dropped, malformed UTF-8 replaced by U+FFFD.
 std::string gate_junit(const GateReport& report);
+// JUnit XML for a gate that could not judge (bad input, exit code 2): one <testcase name="input">
+// with an <error> carrying the message, so the CI job's test report says why.
+std::string gate_junit_error(const std::string& case_path, const std::string& message);
 
 }  // namespace swell::validation

@@ -1,0 +1,165 @@
+// Speed of `swell gate` (docs/gate.md): run_gate(case.toml) — reading the case and its EXR
+// frames and judging them with every check — on F frames of N² written once per size.
+//
+//   gate/<N>/<F>/real_time    F frames of N², fp32 EXR with all six fields (as `swell synth`
+//                             writes them), timed by the wall clock
+//
+// Setup, not timed: the frames of a JONSWAP case (Hs 3 m, Tp 8 s, γ 3.3, cos2s s = 10, 1000 m
+// patch, dt 0.1 s) are synthesized once in fp32 through FFTW and written as EXR with their
+// case.toml into a temporary directory, removed at exit. The target (issue 5) is gate/512/64
+// under 2 s with 2 threads on the 2-core reference machine.
+//
+// Counters per run: read_s (case and frames) and judge_s (the checks), wall clock; cpu_s, the
+// CPU time of every thread (on a shared machine real_time grows with the others' load, cpu_s
+// much less: on an idle machine real_time approaches cpu_s / threads); threads.
+// SWELL_GATE_THREADS sets GateOptions::threads (default 2; 0 = every hardware thread). Read
+// real_time: the gate runs on several threads, which cpu_time misses.
+//
+//   build/bench/swell_gate_bench --benchmark_filter=gate/512/64 --benchmark_repetitions=3
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "swell/impls/synthesizer.hpp"
+#include "swell/reference/ocean_case.hpp"
+#include "swell/validation/case_file.hpp"
+#include "swell/validation/frame_io.hpp"
+#include "swell/validation/gate.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using swell::reference::Grid;
+using swell::reference::OceanCase;
+
+bool any_failed = false;
+
+// CPU seconds of the whole process, every thread, user and system.
+double process_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+int gate_threads() {
+  const char* value = std::getenv("SWELL_GATE_THREADS");
+  return value && *value ? std::atoi(value) : 2;
+}
+
+OceanCase bench_case(int n, int frames) {
+  OceanCase c;
+  c.grid = Grid::create(n, n, 1000.0, 1000.0);
+  c.spectrum = {"jonswap", {{"hs", 3.0}, {"tp", 8.0}, {"gamma", 3.3}}, {}};
+  c.spreading = {"cos2s", {{"s", 10.0}}, {}};
+  c.wind_dir_deg = 30;
+  c.choppiness = 0.8;
+  c.dt = 0.1;
+  c.frames = frames;
+  c.seed = 2024;
+  return c;
+}
+
+// One directory of frames per (N, F), made on first use and removed at exit.
+class FrameDirectories {
+ public:
+  ~FrameDirectories() {
+    std::error_code error;
+    for (const auto& [key, directory] : made_) fs::remove_all(directory, error);
+  }
+  fs::path case_file(int n, int frames) {
+    const std::string key = std::to_string(n) + "/" + std::to_string(frames);
+    if (auto it = made_.find(key); it != made_.end()) return it->second / "case.toml";
+    const fs::path directory = fs::temp_directory_path() /
+                               ("swell_gate_bench_" + std::to_string(getpid()) + "_" +
+                                std::to_string(n) + "_" + std::to_string(frames));
+    made_[key] = directory;
+    swell::validation::CaseFile case_file;
+    case_file.ocean = bench_case(n, frames);
+    swell::impls::SynthesizerOptions options;
+    options.precision = swell::impls::Precision::f32;
+    const swell::impls::Synthesizer synthesizer(case_file.ocean, options);
+    swell::validation::FrameWriteOptions write;
+    write.format = swell::validation::FrameFormat::exr;
+    for (int f = 0; f < frames; ++f) {
+      swell::validation::write_frame(directory, case_file.ocean.grid,
+                                     synthesizer.frame(case_file.ocean.time(f)), f, write);
+    }
+    std::vector<swell::reference::Field> fields(swell::reference::kAllFields.begin(),
+                                                swell::reference::kAllFields.end());
+    case_file.input = swell::validation::frame_input_spec(fields, write);
+    swell::validation::write_case_file(directory / "case.toml", case_file);
+    return directory / "case.toml";
+  }
+
+ private:
+  std::map<std::string, fs::path> made_;
+};
+
+FrameDirectories& directories() {
+  static FrameDirectories instance;
+  return instance;
+}
+
+void run_gate_bench(benchmark::State& state, int n, int frames) {
+  fs::path case_path;
+  try {
+    case_path = directories().case_file(n, frames);
+  } catch (const std::exception& e) {
+    any_failed = true;
+    state.SkipWithError(e.what());
+    return;
+  }
+  swell::validation::GateOptions options;
+  options.threads = gate_threads();
+  double read = 0, total = 0, cpu = 0;
+  bool passed = true;
+  for (auto _ : state) {
+    try {
+      const double cpu_start = process_cpu_seconds();
+      const auto report = swell::validation::run_gate(case_path, options);
+      cpu += process_cpu_seconds() - cpu_start;
+      read += report.read_seconds;
+      total += report.seconds;
+      passed = passed && report.passed();
+    } catch (const std::exception& e) {
+      any_failed = true;
+      state.SkipWithError(e.what());
+      return;
+    }
+  }
+  const double iterations = double(state.iterations());
+  state.counters["read_s"] = read / iterations;
+  state.counters["judge_s"] = (total - read) / iterations;
+  state.counters["cpu_s"] = cpu / iterations;
+  state.counters["threads"] = options.threads;
+  // A right surface fails the gate with probability ≤ α = 1e-3; this seed passes.
+  state.SetLabel(passed ? "pass" : "FAIL");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  benchmark::AddCustomContext("case", bench_case(512, 64).describe() +
+                                          ", dt 0.1 s, choppiness 0.8, seed 2024, fp32 EXR");
+  benchmark::AddCustomContext("threads", std::to_string(gate_threads()) +
+                                             " (SWELL_GATE_THREADS; 0 = every hardware thread)");
+  for (const auto& [n, frames] : {std::pair{128, 8}, std::pair{256, 16}, std::pair{512, 64}}) {
+    benchmark::RegisterBenchmark(
+        ("gate/" + std::to_string(n) + "/" + std::to_string(frames)).c_str(), run_gate_bench, n,
+        frames)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return any_failed ? 1 : 0;
+}
