@@ -6,13 +6,16 @@ SWELL_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 SWELL_BUILD_DIR="${SWELL_BUILD_DIR:-$SWELL_ROOT/build}"
 
 # Every Debian 12 package swell builds, tests or runs with. The dependency check in
-# cmake/SwellDependencies.cmake names the same packages when one is missing.
+# cmake/SwellDependencies.cmake names the same packages when one is missing. The last line is
+# scripts/sanitize's: clang, its sanitizer and libFuzzer runtimes (only recommended by clang, so
+# named here) and its OpenMP.
 SWELL_PACKAGES=(
   build-essential cmake pkg-config
   libfftw3-dev libgtest-dev libgmock-dev libbenchmark-dev libceres-dev libopenimageio-dev
   libvulkan-dev mesa-vulkan-drivers glslc vulkan-tools
   libboost-math-dev nlohmann-json3-dev libcli11-dev libfmt-dev libtomlplusplus-dev
   librandom123-dev
+  clang libclang-rt-14-dev libomp-14-dev
 )
 
 swell_install_packages() {

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstdint>
 #include <fstream>
+#include <istream>
 #include <limits>
 #include <optional>
 #include <string_view>
@@ -47,6 +48,8 @@ std::optional<std::size_t> checked_product(std::size_t a, std::size_t b) {
 // Python's meaning for parentheses: "(3)" is the integer 3, "(3,)" a 1-tuple. Anything else (an
 // escape sequence, a float) is kept as an opaque token or rejected with its byte offset.
 
+struct DictEntry;
+
 struct Literal {
   enum class Type { string, integer, non_integer_number, boolean, none, tuple, list, dict };
   Type type = Type::none;
@@ -54,7 +57,13 @@ struct Literal {
   bool negative = false;   // integer sign
   bool value = false;      // boolean
   std::vector<Literal> items;                          // tuple, list
-  std::vector<std::pair<Literal, Literal>> entries;    // dict, in file order
+  std::vector<DictEntry> entries;                      // dict, in file order
+};
+
+// Not a std::pair<Literal, Literal>: pair needs complete element types where Literal is still
+// being defined, which GCC lets pass and clang with libstdc++ rejects.
+struct DictEntry {
+  Literal key, value;
 };
 
 std::string describe(const Literal& v) {
@@ -207,7 +216,7 @@ class HeaderParser {
       Literal key = parse_value(depth + 1);
       expect(':');
       Literal value = parse_value(depth + 1);
-      v.entries.emplace_back(std::move(key), std::move(value));
+      v.entries.push_back({std::move(key), std::move(value)});
       skip_space();
       if (peek() == ',') {
         ++pos_;
@@ -408,6 +417,10 @@ NpyArray read_npy(const fs::path& path) {
   if (!fs::is_regular_file(status)) fail(path, "is not a regular file");
   std::ifstream file(path, std::ios::binary);
   if (!file) fail(path, std::string("cannot open for reading: ") + std::strerror(errno));
+  return read_npy(file, path);
+}
+
+NpyArray read_npy(std::istream& file, const fs::path& path) {
   file.seekg(0, std::ios::end);
   const std::streamoff end = file.tellg();
   file.seekg(0, std::ios::beg);

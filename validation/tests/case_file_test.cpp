@@ -545,4 +545,32 @@ s = 3
   }
 }
 
+// ------------------------------------------------------------------ found by the fuzzer
+// Inputs validation/fuzz/case_file_fuzzer found escaping as something other than InvalidInput
+// (each is also a seed in validation/fuzz/corpus/case_file/).
+
+// tp = 4.4e65 s: validate() normalizes the JONSWAP (TMA) spectrum by quadrature, which threw
+// NumericalError — `swell fit --case` exited 1 (a failed check) instead of 2 (bad input).
+TEST(CaseFileFuzzFindings, SpectrumThatCannotBeNormalizedIsBadInputNamingTheFile) {
+  try {
+    (void)parse_case_toml(R"(
+[grid]
+n = 256
+length = 300.0
+[physics]
+depth = 8.0
+[spectrum]
+model = "tma"
+hs = 1.2
+tp = 444444444444444444444444444444444444444444444444444444444444444444.0
+gamma = 2.0
+)", "huge_tp.toml");
+    FAIL() << "accepted";
+  } catch (const InvalidInput& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("huge_tp.toml: ", 0), 0u) << message;
+    EXPECT_NE(message.find("spectrum"), std::string::npos) << message;
+  }
+}
+
 }  // namespace

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <random>
+#include <sstream>
 #include <string>
 #include <typeinfo>
 #include <unistd.h>
@@ -488,6 +489,29 @@ TEST_F(Npy, WriterRefusesInconsistentArraysAndUnwritablePaths) {
   EXPECT_THROW(NpyArray::from_values<double>({2, 2}, std::vector<double>{1, 2, 3}), InvalidInput);
   EXPECT_THROW(NpyArray::from_values<double>({3}, std::vector<double>{1, 2, 3}).values<float>(),
                InvalidInput);
+}
+
+// ------------------------------------------------------------------ reading from a stream
+// read_npy(std::istream&, name), which the fuzzer (validation/fuzz/npy_fuzzer.cpp) calls: the
+// same reader as for files, messages naming `name`.
+
+TEST_F(Npy, ReadsFromAStreamAsFromAFile) {
+  const std::string bytes = npy_file(1, kF8Dict, 128, kOneTwoThree);
+  std::istringstream in(bytes, std::ios::binary);
+  const NpyArray from_stream = read_npy(in, "memory.npy");
+  const NpyArray from_file = read_npy(write_bytes("same.npy", bytes));
+  EXPECT_EQ(from_stream.dtype, from_file.dtype);
+  EXPECT_EQ(from_stream.shape, from_file.shape);
+  EXPECT_EQ(from_stream.data, from_file.data);
+  EXPECT_EQ(from_stream.values<double>(), (std::vector<double>{1, 2, 3}));
+
+  std::istringstream truncated(bytes.substr(0, bytes.size() - 1), std::ios::binary);
+  try {
+    (void)read_npy(truncated, "memory.npy");
+    ADD_FAILURE() << "accepted a truncated stream";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("memory.npy: truncated data", 0), 0u) << e.what();
+  }
 }
 
 }  // namespace

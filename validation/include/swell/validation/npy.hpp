@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstring>
 #include <filesystem>
+#include <iosfwd>
 #include <span>
 #include <string>
 #include <type_traits>
@@ -72,6 +73,9 @@ constexpr NpyArray::Dtype npy_dtype_of() {
 
 // Reads format versions 1.0, 2.0 and 3.0, any rank. Throws InvalidInput "<path>: <problem>".
 NpyArray read_npy(const std::filesystem::path& path);
+// The same from a seekable binary stream whose whole content, start to end, is one .npy file (an
+// in-memory buffer, a fuzzer's bytes); `name` stands for the file in the messages.
+NpyArray read_npy(std::istream& in, const std::filesystem::path& name);
 
 // The header bytes numpy.save writes for this array (magic through the final '\n'), byte for
 // byte as numpy ≥ 1.24 does it. version 0 picks the oldest that fits, as numpy: 1.0 unless the
