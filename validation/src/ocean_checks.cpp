@@ -149,33 +149,10 @@ class Analysis {
     if (!(expected_total > 0)) {
       throw InvalidInput("the case's spectrum puts no energy on this grid (" + c_.describe() + ")");
     }
-    max_mu_ = *std::max_element(mu_.begin(), mu_.end());
     // Rounding of the stored numbers, white over the N wave vectors: at most u² mean(h²)/N per
     // k. A wave vector is resolved when the model puts 10⁶ times that there, so rounding moves
     // its periodogram by < 10⁻⁶ relative — far below any sampling effect the checks test.
     floor_ = 1e6 * u_ * u_ * mean_square0_ / double(count_);
-    if (options.free_scale) {
-      // The maximum-likelihood scale of exponential ordinates: the mean of I/μ over the
-      // resolved half plane (Whittle). The floor is compared with the scaled model.
-      double sum = 0;
-      int used = 0;
-      for (int j = 0; j < grid_.ny; ++j) {
-        const int m = Grid::signed_index(j, grid_.ny);
-        for (int i = 0; i < grid_.nx; ++i) {
-          const int n = Grid::signed_index(i, grid_.nx);
-          const std::size_t e = std::size_t(j) * grid_.nx + i;
-          if (!grid_.carries_energy(n, m) || !in_half_plane(n, m) || !(mu_[e] > 0)) continue;
-          if (mu_[e] * mean_square0_ / expected_total < floor_) continue;
-          sum += std::norm(spectrum0_[e]) / mu_[e];
-          ++used;
-        }
-      }
-      scale_ = used > 0 ? sum / used : 0;
-      if (!(scale_ > 0)) throw InvalidInput("free scale: the height field is identically zero");
-      for (double& v : mu_) v *= scale_;
-      for (double& v : tau_) v *= scale_;
-      max_mu_ *= scale_;
-    }
 
     for (int j = 0; j < grid_.ny; ++j) {
       const int m = Grid::signed_index(j, grid_.ny);
@@ -195,8 +172,31 @@ class Analysis {
         w.tau_plus = tau_[e];
         w.tau_minus = tau_[w.minus_index];
         all_half_plane_.push_back(w);
-        if (w.mu >= floor_ && w.mu > 0) resolved_.push_back(w);
       }
+    }
+    if (options.free_scale) {
+      // The maximum-likelihood scale of exponential ordinates: the mean of I/μ over the
+      // resolved half plane (Whittle), resolution judged with the model scaled to the data's
+      // energy.
+      double sum = 0;
+      int used = 0;
+      for (const Wave& w : all_half_plane_) {
+        if (!(w.mu > 0) || w.mu * mean_square0_ / expected_total < floor_) continue;
+        sum += std::norm(spectrum0_[w.index]) / w.mu;
+        ++used;
+      }
+      scale_ = used > 0 ? sum / used : 0;
+      if (!(scale_ > 0)) throw InvalidInput("free scale: the height field is identically zero");
+      for (double& v : mu_) v *= scale_;
+      for (double& v : tau_) v *= scale_;
+      for (Wave& w : all_half_plane_) {
+        w.mu *= scale_;
+        w.tau_plus *= scale_;
+        w.tau_minus *= scale_;
+      }
+    }
+    for (const Wave& w : all_half_plane_) {
+      if (w.mu >= floor_ && w.mu > 0) resolved_.push_back(w);
     }
     if (resolved_.empty()) {
       throw InvalidInput("no wave vector of the grid carries resolvable energy under the case's "
@@ -257,7 +257,7 @@ class Analysis {
   OceanCheckOptions options_;
   Grid grid_;
   std::size_t count_ = 0;
-  double log2n_ = 1, u_ = kFp64Roundoff, scale_ = 1, max_mu_ = 0, floor_ = 0, mean_square0_ = 0;
+  double log2n_ = 1, u_ = kFp64Roundoff, scale_ = 1, floor_ = 0, mean_square0_ = 0;
   std::vector<double> times_, mu_, tau_;
   std::vector<Complex> spectrum0_;
   std::vector<Wave> resolved_, all_half_plane_;
