@@ -13,10 +13,10 @@
 #include <cstdlib>
 #include <fstream>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench_support.hpp"
 #include "swell/impls/transform.hpp"
 
 namespace {
@@ -24,12 +24,7 @@ namespace {
 using namespace swell::impls;
 
 std::vector<std::string> implementations() {
-  const char* chosen = std::getenv("SWELL_BENCH_IMPLS");
-  if (!chosen || !*chosen) return backend_names();
-  std::vector<std::string> names;
-  std::stringstream list(chosen);
-  for (std::string name; std::getline(list, name, ',');) names.push_back(name);
-  return names;
+  return swell::bench::backends_from_environment(backend_names());
 }
 
 std::string cpu_flags() {

@@ -40,10 +40,10 @@
 #include <cstdlib>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench_support.hpp"
 #include "swell/impls/synthesizer.hpp"
 #include "swell/impls/transform.hpp"
 #include "swell/reference/ocean_case.hpp"
@@ -51,7 +51,6 @@
 namespace {
 
 using namespace swell::impls;
-using swell::reference::Grid;
 using swell::reference::OceanCase;
 using Clock = std::chrono::steady_clock;
 
@@ -73,16 +72,11 @@ void fail(benchmark::State& state, const std::exception& e) {
 }
 
 std::vector<std::string> implementations() {
-  std::vector<std::string> names;
-  if (const char* chosen = std::getenv("SWELL_BENCH_IMPLS"); chosen && *chosen) {
-    std::stringstream list(chosen);
-    for (std::string name; std::getline(list, name, ',');) names.push_back(name);
-    return names;
-  }
+  std::vector<std::string> exact;
   for (const auto& name : backend_names()) {
-    if (name != "naive" && make_backend(name)->capabilities().exact) names.push_back(name);
+    if (name != "naive" && make_backend(name)->capabilities().exact) exact.push_back(name);
   }
-  return names;
+  return swell::bench::backends_from_environment(exact);
 }
 
 // "fftw:threads=2" → 2: the assembly then runs on as many threads as the transform.
@@ -91,17 +85,7 @@ int threads_of(const std::string& impl) {
   return at == std::string::npos ? 1 : std::atoi(impl.c_str() + at + 8);
 }
 
-OceanCase bench_case(int n) {
-  OceanCase c;
-  c.grid = Grid::create(n, n, 1000.0, 1000.0);
-  c.spectrum = {"jonswap", {{"hs", 3.0}, {"tp", 8.0}, {"gamma", 3.3}}, {}};
-  c.spreading = {"cos2s", {{"s", 10.0}}, {}};
-  c.wind_dir_deg = 30;
-  c.choppiness = 0.8;
-  c.dt = kFrameStep;
-  c.seed = 2024;
-  return c;
-}
+OceanCase bench_case(int n) { return swell::bench::jonswap_bench_case(n, 1, kFrameStep); }
 
 // The transforms of one frame on buffers of their own. Their input is zeros: transform time
 // does not depend on the values (no backend branches on data; zeros are not subnormal), and an

@@ -27,6 +27,7 @@
 #include <memory>
 #include <string>
 
+#include "bench_support.hpp"
 #include "swell/impls/synthesizer.hpp"
 #include "swell/reference/ocean_case.hpp"
 #include "swell/validation/case_file.hpp"
@@ -36,7 +37,6 @@
 namespace {
 
 namespace fs = std::filesystem;
-using swell::reference::Grid;
 using swell::reference::OceanCase;
 
 bool any_failed = false;
@@ -54,18 +54,7 @@ int gate_threads() {
   return value && *value ? std::atoi(value) : 2;
 }
 
-OceanCase bench_case(int n, int frames) {
-  OceanCase c;
-  c.grid = Grid::create(n, n, 1000.0, 1000.0);
-  c.spectrum = {"jonswap", {{"hs", 3.0}, {"tp", 8.0}, {"gamma", 3.3}}, {}};
-  c.spreading = {"cos2s", {{"s", 10.0}}, {}};
-  c.wind_dir_deg = 30;
-  c.choppiness = 0.8;
-  c.dt = 0.1;
-  c.frames = frames;
-  c.seed = 2024;
-  return c;
-}
+OceanCase bench_case(int n, int frames) { return swell::bench::jonswap_bench_case(n, frames, 0.1); }
 
 // One directory of frames per (N, F), made on first use and removed at exit.
 class FrameDirectories {
