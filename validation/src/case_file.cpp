@@ -234,6 +234,61 @@ void read_model_parameters(const Section& section, const std::string& model,
   }
 }
 
+// [input] value_range: [low, high] for every field given, or an inline table of them by field
+// ({ height = [-4.0, 4.0], disp_x = [-2.0, 2.0] }).
+std::map<Field, IntegerRange> read_value_ranges(const Section& input,
+                                                const std::map<Field, std::string>& channels) {
+  const std::string key = "value_range";
+  const toml::node* node = input.find(key);
+  if (!node) return {};
+  const std::string shape = "[low, high] (the values of pixel 0 and of the largest pixel), or a "
+                            "table of them by field such as { height = [-4.0, 4.0] }";
+  auto pair_of = [&](const toml::node& item, const std::string& where) {
+    const auto* array = item.as_array();
+    double values[2] = {0, 0};
+    bool numbers = array && array->size() == 2;
+    for (std::size_t i = 0; numbers && i < 2; ++i) {
+      if (auto v = array->get(i)->as_floating_point()) {
+        values[i] = v->get();
+      } else if (auto w = array->get(i)->as_integer()) {
+        values[i] = static_cast<double>(w->get());
+      } else {
+        numbers = false;
+      }
+    }
+    if (!numbers) input.fail(key, where + "must be " + shape);
+    if (!(std::isfinite(values[0]) && std::isfinite(values[1]) && values[0] < values[1])) {
+      input.fail(key, fmt::format("{}[{:g}, {:g}] must be finite with low < high", where,
+                                  values[0], values[1]));
+    }
+    return IntegerRange{values[0], values[1]};
+  };
+  std::map<Field, IntegerRange> out;
+  if (const auto* table = node->as_table()) {
+    for (auto&& [name, item] : *table) {
+      const std::string field_name(name.str());
+      Field field{};
+      try {
+        field = reference::field_from_name(field_name);
+      } catch (const std::exception&) {
+        std::vector<std::string> names;
+        for (Field f : reference::kAllFields) names.push_back(reference::field_name(f));
+        input.fail(key, fmt::format("unknown field '{}'; fields: {}", field_name, join(names)));
+      }
+      if (!channels.count(field)) {
+        input.fail(key, fmt::format("gives a range for {}, which [input] does not provide",
+                                    field_name));
+      }
+      out[field] = pair_of(item, field_name + ": ");
+    }
+    if (out.empty()) input.fail(key, "is an empty table; give a range per field, or [low, high]");
+    return out;
+  }
+  const IntegerRange range = pair_of(*node, "");
+  for (const auto& [field, channel] : channels) out[field] = range;
+  return out;
+}
+
 std::string model_name(const Section& section, const std::vector<std::string>& valid,
                        const std::string& kind) {
   const std::string model = *section.string("model");
@@ -421,7 +476,7 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
   // [input]: the frames' pattern, one channel (or file suffix) per field provided.
   const Section input = section("input");
   {
-    std::vector<std::string> valid = {"files", "raw_type"};
+    std::vector<std::string> valid = {"files", "raw_type", "value_range"};
     for (Field field : reference::kAllFields) valid.push_back(reference::field_name(field));
     input.allow_only(valid);
     if (auto files = input.string("files")) {
@@ -433,9 +488,10 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
       }
       std::string ext = fs::path(*files).extension().string();
       for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-      if (ext != ".exr" && ext != ".tif" && ext != ".tiff" && ext != ".npy" && ext != ".raw") {
+      if (ext != ".exr" && ext != ".tif" && ext != ".tiff" && ext != ".png" && ext != ".npy" &&
+          ext != ".raw") {
         input.fail("files", fmt::format("extension '{}' is not one swell reads (.exr, .tif, .tiff, "
-                                        ".npy, .raw)",
+                                        ".png, .npy, .raw)",
                                         ext));
       }
       out.input.files = *files;
@@ -460,9 +516,10 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
     }
     if (input.present() && out.input.channels.empty()) {
       report.fail(fmt::format("[input] names no field; give at least one of {} with its channel "
-                              "(EXR/TIFF) or file suffix (.npy/.raw)",
-                              join(std::vector<std::string>(valid.begin() + 2, valid.end()))));
+                              "(EXR/TIFF/PNG) or file suffix (.npy/.raw)",
+                              join(std::vector<std::string>(valid.begin() + 3, valid.end()))));
     }
+    out.input.value_ranges = read_value_ranges(input, out.input.channels);
   }
 
   try {
@@ -533,6 +590,24 @@ std::string case_toml(const CaseFile& case_file) {
       out += fmt::format("{} = {}\n", reference::field_name(field), toml_string(channel));
     }
     if (input.raw_type != "float32") out += fmt::format("raw_type = {}\n", toml_string(input.raw_type));
+    if (!input.value_ranges.empty()) {
+      const IntegerRange first = input.value_ranges.begin()->second;
+      bool one_for_all = input.value_ranges.size() == input.channels.size();
+      for (const auto& [field, range] : input.value_ranges) one_for_all = one_for_all && range == first;
+      auto pair = [](const IntegerRange& r) {
+        return fmt::format("[{}, {}]", toml_number(r.low), toml_number(r.high));
+      };
+      if (one_for_all) {
+        out += fmt::format("value_range = {}\n", pair(first));
+      } else {
+        std::string table;
+        for (const auto& [field, range] : input.value_ranges) {
+          table += fmt::format("{}{} = {}", table.empty() ? "" : ", ", reference::field_name(field),
+                               pair(range));
+        }
+        out += fmt::format("value_range = {{ {} }}\n", table);
+      }
+    }
   }
   return out;
 }

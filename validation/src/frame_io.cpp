@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <cstring>
 #include <exception>
 #include <fstream>
@@ -37,7 +38,7 @@ constexpr double kDoubleRoundoff = 0x1p-53;
 // TIFF has no channel names; swell keeps them in the ImageDescription tag after this prefix.
 constexpr const char* kTiffChannelsPrefix = "swell channels:";
 
-enum class StoredFormat { exr, tiff, npy, raw };
+enum class StoredFormat { exr, tiff, png, npy, raw };
 
 std::string lowercase(std::string text) {
   for (auto& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -48,19 +49,11 @@ StoredFormat stored_format_of(const std::string& pattern, const std::string& ori
   const std::string ext = lowercase(fs::path(pattern).extension().string());
   if (ext == ".exr") return StoredFormat::exr;
   if (ext == ".tif" || ext == ".tiff") return StoredFormat::tiff;
+  if (ext == ".png") return StoredFormat::png;
   if (ext == ".npy") return StoredFormat::npy;
   if (ext == ".raw") return StoredFormat::raw;
-  if (ext == ".png") {
-    // PNG holds 8- or 16-bit integers: no unit (metres? a slider's range?) and a quantization
-    // step of 2⁻⁸ or 2⁻¹⁶ of the range, below which no wave vector can be resolved.
-    throw InvalidInput(fmt::format("{}: files = \"{}\": PNG frames hold 8- or 16-bit integers, "
-                                   "which carry no unit (metres of height cannot be read from "
-                                   "them) and resolve little; write float frames instead: .exr, "
-                                   ".tif, .tiff, .npy or .raw (docs/gate.md)",
-                                   origin, pattern));
-  }
   throw InvalidInput(fmt::format("{}: files = \"{}\" has extension '{}'; swell reads .exr, .tif, "
-                                 ".tiff, .npy and .raw frames",
+                                 ".tiff, .png, .npy and .raw frames",
                                  origin, pattern, ext));
 }
 
@@ -151,20 +144,25 @@ std::string describe_field(Field field, const std::string& channel) {
   return fmt::format("{} ({})", reference::field_name(field), channel);
 }
 
+// The message for a field with `count` non-finite samples, the first at flat index `at`.
+[[noreturn]] void fail_non_finite(const Grid& grid, const std::string& file, const std::string& what,
+                                  std::size_t at, double value, std::size_t count) {
+  const std::size_t i = at % static_cast<std::size_t>(grid.nx);
+  const std::size_t j = at / static_cast<std::size_t>(grid.nx);
+  throw InvalidInput(fmt::format("{}: {} is {} at (i, j) = ({}, {}) ({} non-finite value{} in "
+                                 "all); every value must be finite",
+                                 file, what, std::isnan(value) ? "NaN" : (value > 0 ? "+Inf" : "-Inf"),
+                                 i, j, count, count == 1 ? "" : "s"));
+}
+
 // NaN or ±Inf anywhere: the first bad sample, by (i, j) (i along x).
 void require_finite(const std::vector<double>& values, const Grid& grid, const std::string& file,
                     const std::string& what) {
   for (std::size_t k = 0; k < values.size(); ++k) {
-    const double v = values[k];
-    if (std::isfinite(v)) continue;
-    const std::size_t i = k % static_cast<std::size_t>(grid.nx);
-    const std::size_t j = k / static_cast<std::size_t>(grid.nx);
+    if (std::isfinite(values[k])) continue;
     std::size_t count = 0;
     for (double x : values) count += std::isfinite(x) ? 0 : 1;
-    throw InvalidInput(fmt::format("{}: {} is {} at (i, j) = ({}, {}) ({} non-finite value{} in "
-                                   "all); every value must be finite",
-                                   file, what, std::isnan(v) ? "NaN" : (v > 0 ? "+Inf" : "-Inf"),
-                                   i, j, count, count == 1 ? "" : "s"));
+    fail_non_finite(grid, file, what, k, values[k], count);
   }
 }
 
@@ -201,10 +199,12 @@ std::map<Field, int> locate_channels(const std::string& file, StoredFormat forma
   }
   if (found.size() == channels.size()) return found;
 
-  // A TIFF from another writer has no channel names (OpenImageIO calls them Y, or R, G, B,
-  // channel3, …): when none of the names match and the channel count equals the number of
-  // fields listed, the fields are taken by position in swell's order h, sx, sy, dx, dy, J.
-  if (format == StoredFormat::tiff && !named_by_swell && found.empty() &&
+  // A TIFF from another writer, and any PNG, has no channel names of its own (OpenImageIO
+  // calls them Y, or R, G, B, A, channel4, …): when none of the names match and the channel
+  // count equals the number of fields listed, the fields are taken by position in swell's order
+  // h, sx, sy, dx, dy, J.
+  if ((format == StoredFormat::tiff || format == StoredFormat::png) && !named_by_swell &&
+      found.empty() &&
       static_cast<int>(channels.size()) == spec.nchannels) {
     int position = 0;
     for (Field field : reference::kAllFields) {
@@ -222,19 +222,33 @@ std::map<Field, int> locate_channels(const std::string& file, StoredFormat forma
   return found;  // unreachable: some field was missing
 }
 
+// The rounding of a field stored as integers: a uniform quantization error of step
+// q = (high − low)/levels, variance q²/12, white — as a unit roundoff u relative to the field's
+// rms (the checks' rounding budget is u² mean(v²), conventions §Tolerances), u = q/√(12 mean v²).
+double quantization_roundoff(const IntegerRange& range, double levels,
+                             const std::vector<double>& values) {
+  double sum = 0;
+  for (double v : values) sum += v * v;
+  const double rms = std::sqrt(sum / double(std::max<std::size_t>(1, values.size())));
+  const double step = (range.high - range.low) / levels;
+  return rms > 0 ? std::min(1.0, step / std::sqrt(12.0) / rms) : 1.0;
+}
+
 double read_image_frame(const fs::path& path, StoredFormat format, const Grid& grid,
-                        const std::map<Field, std::string>& channels, FieldFrame& frame) {
+                        const InputSpec& input, const std::function<bool(Field)>& keep,
+                        FieldFrame& frame) {
   const std::string file = path.string();
-  // Keep the bytes of a TIFF with unassociated alpha as stored (no premultiplication).
+  const auto& channels = input.channels;
+  // Keep the bytes of a TIFF or PNG with unassociated alpha as stored (no premultiplication).
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
-  auto input = OIIO::ImageInput::open(file, &config);
-  if (!input) {
+  auto image = OIIO::ImageInput::open(file, &config);
+  if (!image) {
     std::string why = OIIO::geterror();
     if (why.empty()) why = "unknown error";
     throw InvalidInput(fmt::format("{}: cannot read the image: {}", file, why));
   }
-  const OIIO::ImageSpec& spec = input->spec();
+  const OIIO::ImageSpec& spec = image->spec();
   if (spec.deep) throw InvalidInput(file + ": deep images are not supported");
   if (spec.width != grid.nx || spec.height != grid.ny || spec.depth != 1) {
     throw InvalidInput(fmt::format("{}: wrong size: {}×{}{} pixels, the case's grid is {}×{} "
@@ -248,29 +262,60 @@ double read_image_frame(const fs::path& path, StoredFormat format, const Grid& g
   double roundoff = 0;
   int first = spec.nchannels, last = -1;
   bool all_float = true;
+  std::map<Field, double> integer_levels;  // 255 or 65535 for a field stored as integers
   for (const auto& [field, index] : located) {
     const OIIO::TypeDesc type = spec.channelformat(index);
+    const std::string& name = spec.channelnames[index];
+    const bool has_range = input.value_ranges.count(field) > 0;
     const double u = roundoff_of(type);
-    if (u == 0) {
+    if (u > 0) {
+      if (has_range) {
+        throw InvalidInput(fmt::format("{}: channel '{}' for {} stores {} floating-point values, "
+                                       "which need no [input] value_range (it is for 8- and "
+                                       "16-bit integer images); remove it",
+                                       file, name, reference::field_name(field), type.c_str()));
+      }
+      roundoff = std::max(roundoff, u);
+      all_float = all_float && type.basetype != OIIO::TypeDesc::DOUBLE;
+    } else if (type.basetype == OIIO::TypeDesc::UINT8 || type.basetype == OIIO::TypeDesc::UINT16) {
+      const double levels = type.basetype == OIIO::TypeDesc::UINT8 ? 255.0 : 65535.0;
+      if (!has_range) {
+        throw InvalidInput(fmt::format("{}: channel '{}' for {} stores {}-bit integers, which carry "
+                                       "no unit: give [input] value_range = [low, high], the "
+                                       "values (metres) that pixel 0 and pixel {} stand for "
+                                       "(docs/case_files.md)",
+                                       file, name, reference::field_name(field),
+                                       levels == 255.0 ? 8 : 16, levels));
+      }
+      integer_levels[field] = levels;
+    } else {
       throw InvalidInput(fmt::format("{}: channel '{}' for {} stores {} values; swell reads "
-                                     "floating-point channels (half, float, double)",
-                                     file, spec.channelnames[index], reference::field_name(field),
-                                     type.c_str()));
+                                     "floating-point channels (half, float, double) and 8- or "
+                                     "16-bit unsigned integers with [input] value_range",
+                                     file, name, reference::field_name(field), type.c_str()));
     }
-    roundoff = std::max(roundoff, u);
-    all_float = all_float && type.basetype != OIIO::TypeDesc::DOUBLE;
     first = std::min(first, index);
     last = std::max(last, index);
   }
   // Every channel from the first wanted to the last in one read: a compressed file (EXR ZIP
   // blocks hold all channels of 16 scanlines) is then decompressed once, not once per field.
-  // Half and float values are exact in float, which halves the buffer; double stays double.
+  // Half, float and integer values (OpenImageIO scales 8- and 16-bit integers to [0, 1]) are
+  // exact in float, which halves the buffer; double stays double. Scanline files are read a
+  // band of rows at a time into one buffer of about 1 MB, which stays in cache while each
+  // field is taken out of it (the gate reads 64 frames of 512² × 6 fields: 0.4 GB at once
+  // would cost page faults and memory traffic); tiled files whole.
   const int span = last - first + 1;
-  auto read_span = [&](auto* buffer, OIIO::TypeDesc type) {
+  const std::size_t nx = static_cast<std::size_t>(grid.nx);
+  const int band_rows = spec.tile_width > 0
+                            ? grid.ny
+                            : std::clamp(int((std::size_t(1) << 18) / (nx * span)), 1, grid.ny);
+  auto read_band = [&](int y0, int y1, auto* buffer, OIIO::TypeDesc type) {
+    const bool ok = spec.tile_width > 0
+                        ? image->read_image(0, 0, first, last + 1, type, buffer)
+                        : image->read_scanlines(0, 0, y0, y1, 0, first, last + 1, type, buffer);
     // OpenImageIO's TIFF reader returns true for a strip it could not read, with the error
     // pending (and garbage in the buffer): an error message counts as a failure too.
-    const bool ok = input->read_image(0, 0, first, last + 1, type, buffer);
-    std::string why = input->geterror();
+    std::string why = image->geterror();
     if (!ok || !why.empty()) {
       if (why.empty()) why = "unknown error";
       std::string names;
@@ -282,25 +327,85 @@ double read_image_frame(const fs::path& path, StoredFormat format, const Grid& g
                                      file, span == 1 ? "" : "s", names, why));
     }
   };
-  auto split = [&](const auto& pixels) {
-    for (const auto& [field, index] : located) {
-      std::vector<double> values(count);
-      const std::size_t offset = static_cast<std::size_t>(index - first);
-      for (std::size_t k = 0; k < count; ++k) values[k] = pixels[k * span + offset];
-      require_finite(values, grid, file, describe_field(field, spec.channelnames[index]));
-      frame.fields[field] = std::move(values);
+  // Per field: its values when kept (or stored as integers, whose rms sets the rounding), and
+  // its non-finite samples: how many, and the first.
+  struct Taken {
+    Field field = Field::height;
+    std::size_t offset = 0;
+    bool kept = true;
+    const IntegerRange* range = nullptr;
+    double levels = 0;
+    std::vector<double> values;
+    std::size_t bad = 0, first_bad = 0;
+    double first_bad_value = 0;
+  };
+  std::vector<Taken> taken;
+  for (const auto& [field, index] : located) {
+    Taken t;
+    t.field = field;
+    t.offset = static_cast<std::size_t>(index - first);
+    t.kept = !keep || keep(field);
+    if (const auto levels = integer_levels.find(field); levels != integer_levels.end()) {
+      t.range = &input.value_ranges.at(field);
+      t.levels = levels->second;
+    }
+    if (t.kept || t.range) t.values.resize(count);
+    taken.push_back(std::move(t));
+  }
+  auto take = [&](auto& buffer, OIIO::TypeDesc type) {
+    for (int y0 = 0; y0 < grid.ny; y0 += band_rows) {
+      const int y1 = std::min(grid.ny, y0 + band_rows);
+      const std::size_t base = static_cast<std::size_t>(y0) * nx;
+      const std::size_t samples = static_cast<std::size_t>(y1 - y0) * nx;
+      buffer.resize(samples * span);
+      read_band(y0, y1, buffer.data(), type);
+      for (Taken& t : taken) {
+        const auto* pixels = buffer.data() + t.offset;
+        if (t.range) {
+          const double width = t.range->high - t.range->low;
+          for (std::size_t k = 0; k < samples; ++k) {
+            t.values[base + k] = t.range->low + width * pixels[k * span];
+          }
+          continue;  // integers are finite
+        }
+        bool finite = true;
+        if (t.kept) {
+          for (std::size_t k = 0; k < samples; ++k) {
+            const double v = pixels[k * span];
+            t.values[base + k] = v;
+            finite &= std::isfinite(v);
+          }
+        } else {
+          for (std::size_t k = 0; k < samples; ++k) finite &= std::isfinite(pixels[k * span]);
+        }
+        if (finite) continue;
+        for (std::size_t k = 0; k < samples; ++k) {
+          const double v = pixels[k * span];
+          if (std::isfinite(v)) continue;
+          if (t.bad++ == 0) {
+            t.first_bad = base + k;
+            t.first_bad_value = v;
+          }
+        }
+      }
     }
   };
   if (all_float) {
-    std::vector<float> pixels(count * span);
-    read_span(pixels.data(), OIIO::TypeDesc::FLOAT);
-    split(pixels);
+    std::vector<float> buffer;
+    take(buffer, OIIO::TypeDesc::FLOAT);
   } else {
-    std::vector<double> pixels(count * span);
-    read_span(pixels.data(), OIIO::TypeDesc::DOUBLE);
-    split(pixels);
+    std::vector<double> buffer;
+    take(buffer, OIIO::TypeDesc::DOUBLE);
   }
-  input->close();
+  image->close();
+  for (Taken& t : taken) {
+    if (t.bad > 0) {
+      fail_non_finite(grid, file, describe_field(t.field, channels.at(t.field)), t.first_bad,
+                      t.first_bad_value, t.bad);
+    }
+    if (t.range) roundoff = std::max(roundoff, quantization_roundoff(*t.range, t.levels, t.values));
+    if (t.kept) frame.fields[t.field] = std::move(t.values);
+  }
   return roundoff;
 }
 
@@ -399,53 +504,114 @@ std::string extension_of(FrameFormat format) {
     case FrameFormat::exr: return ".exr";
     case FrameFormat::npy: return ".npy";
     case FrameFormat::tiff: return ".tif";
+    case FrameFormat::png: return ".png";
   }
   return "";
 }
 
 constexpr const char* kWritePattern = "frame_%04d";
 
-std::vector<fs::path> write_image_frame(const fs::path& path, FrameFormat format, const Grid& grid,
-                                        const std::vector<Field>& fields, const FieldFrame& frame) {
+// PNG holds 1 to 4 channels, named by their count as OpenImageIO reads them back.
+std::vector<std::string> png_channel_names(std::size_t count) {
+  switch (count) {
+    case 1: return {"Y"};
+    case 2: return {"Y", "A"};
+    case 3: return {"R", "G", "B"};
+    case 4: return {"R", "G", "B", "A"};
+    default:
+      throw InvalidInput(fmt::format("a PNG holds at most 4 channels; {} fields were given (write "
+                                     "EXR, TIFF or .npy for more)",
+                                     count));
+  }
+}
+
+void require_png_options(const FrameWriteOptions& options) {
+  if (options.png_bits != 8 && options.png_bits != 16) {
+    throw InvalidInput(fmt::format("PNG frames are 8- or 16-bit (got {} bits)", options.png_bits));
+  }
+  const IntegerRange& range = options.png_range;
+  if (!(std::isfinite(range.low) && std::isfinite(range.high) && range.low < range.high)) {
+    throw InvalidInput(fmt::format("PNG frames need a value range [low, high] with low < high, "
+                                   "both finite (got [{:g}, {:g}])",
+                                   range.low, range.high));
+  }
+}
+
+std::vector<fs::path> write_image_frame(const fs::path& path, const Grid& grid,
+                                        const std::vector<Field>& fields, const FieldFrame& frame,
+                                        const FrameWriteOptions& options) {
   const std::string file = path.string();
+  const bool png = options.format == FrameFormat::png;
   auto output = OIIO::ImageOutput::create(file);
   if (!output) {
     throw InvalidInput(fmt::format("{}: cannot write: {}", file, OIIO::geterror()));
   }
   const int channels = static_cast<int>(fields.size());
-  OIIO::ImageSpec spec(grid.nx, grid.ny, channels, OIIO::TypeDesc::FLOAT);
+  const OIIO::TypeDesc type = !png                   ? OIIO::TypeDesc::FLOAT
+                             : options.png_bits == 8 ? OIIO::TypeDesc::UINT8
+                                                     : OIIO::TypeDesc::UINT16;
+  const double top = options.png_bits == 8 ? 255.0 : 65535.0;
+  OIIO::ImageSpec spec(grid.nx, grid.ny, channels, type);
   spec.channelnames.clear();
   std::string names;
-  for (Field field : fields) {
-    spec.channelnames.push_back(reference::channel_name(field));
-    names += " " + reference::channel_name(field);
+  const auto png_names = png ? png_channel_names(fields.size()) : std::vector<std::string>{};
+  for (std::size_t c = 0; c < fields.size(); ++c) {
+    spec.channelnames.push_back(png ? png_names[c] : reference::channel_name(fields[c]));
+    names += " " + reference::channel_name(fields[c]);
   }
   spec.alpha_channel = -1;  // no channel is alpha: nothing may be premultiplied
-  spec.attribute("compression", "zip");  // lossless in both formats
-  if (format == FrameFormat::tiff) spec.attribute("ImageDescription", kTiffChannelsPrefix + names);
+  if (!png) spec.attribute("compression", "zip");  // lossless in both formats
+  if (options.format == FrameFormat::tiff) {
+    spec.attribute("ImageDescription", kTiffChannelsPrefix + names);
+  }
   spec.attribute("Software", "swell");
   if (!output->open(file, spec)) {
     throw InvalidInput(fmt::format("{}: cannot write: {}", file, output->geterror()));
   }
-  // Interleaved float rows, a block at a time, so that a large frame never needs a second copy.
+  // A PNG pixel is round((v − low)/(high − low) · top), top = 2^bits − 1; a value outside
+  // [low, high] (by more than half a step) has no pixel and is an error, never clipped. 8-bit
+  // pixels go to OpenImageIO as 16-bit values p·257, which it stores back as p exactly.
+  const IntegerRange range = options.png_range;
+  auto pixel_of = [&](double v, Field field, std::size_t x, int y) -> std::uint16_t {
+    const double p = std::nearbyint((v - range.low) / (range.high - range.low) * top);
+    if (!(p >= 0 && p <= top)) {
+      throw InvalidInput(fmt::format("{}: {} = {:g} at (i, j) = ({}, {}) lies outside the PNG "
+                                     "value range [{:g}, {:g}]",
+                                     file, reference::field_name(field), v, x, y, range.low,
+                                     range.high));
+    }
+    return static_cast<std::uint16_t>(top == 255.0 ? p * 257 : p);
+  };
+  // Interleaved rows, a block at a time, so that a large frame never needs a second copy.
   const std::size_t nx = static_cast<std::size_t>(grid.nx);
   const int rows_per_block = std::max(1, static_cast<int>((1u << 20) / (nx * fields.size())));
   std::vector<float> block;
+  std::vector<std::uint16_t> pixels;
   for (int y0 = 0; y0 < grid.ny; y0 += rows_per_block) {
     const int y1 = std::min(grid.ny, y0 + rows_per_block);
-    block.assign(static_cast<std::size_t>(y1 - y0) * nx * fields.size(), 0.0f);
+    const std::size_t size = static_cast<std::size_t>(y1 - y0) * nx * fields.size();
+    if (png) {
+      pixels.assign(size, 0);
+    } else {
+      block.assign(size, 0.0f);
+    }
     for (std::size_t c = 0; c < fields.size(); ++c) {
       const auto& values = frame.fields.at(fields[c]);
       for (int y = y0; y < y1; ++y) {
         for (std::size_t x = 0; x < nx; ++x) {
-          block[((y - y0) * nx + x) * fields.size() + c] =
-              static_cast<float>(values[static_cast<std::size_t>(y) * nx + x]);
+          const double v = values[static_cast<std::size_t>(y) * nx + x];
+          const std::size_t at = ((y - y0) * nx + x) * fields.size() + c;
+          if (png) {
+            pixels[at] = pixel_of(v, fields[c], x, y);
+          } else {
+            block[at] = static_cast<float>(v);
+          }
         }
       }
     }
-    if (!output->write_scanlines(y0, y1, 0, OIIO::TypeDesc::FLOAT, block.data())) {
-      throw InvalidInput(fmt::format("{}: write failed: {}", file, output->geterror()));
-    }
+    const bool ok = png ? output->write_scanlines(y0, y1, 0, OIIO::TypeDesc::UINT16, pixels.data())
+                        : output->write_scanlines(y0, y1, 0, type, block.data());
+    if (!ok) throw InvalidInput(fmt::format("{}: write failed: {}", file, output->geterror()));
   }
   if (!output->close()) {
     throw InvalidInput(fmt::format("{}: write failed: {}", file, output->geterror()));
@@ -474,7 +640,8 @@ FrameFormat frame_format_from_string(const std::string& name) {
   if (name == "exr") return FrameFormat::exr;
   if (name == "npy") return FrameFormat::npy;
   if (name == "tiff" || name == "tif") return FrameFormat::tiff;
-  throw InvalidInput("unknown frame format '" + name + "'; valid: exr, npy, tiff");
+  if (name == "png") return FrameFormat::png;
+  throw InvalidInput("unknown frame format '" + name + "'; valid: exr, npy, tiff, png");
 }
 
 std::string to_string(FrameFormat format) {
@@ -482,6 +649,7 @@ std::string to_string(FrameFormat format) {
     case FrameFormat::exr: return "exr";
     case FrameFormat::npy: return "npy";
     case FrameFormat::tiff: return "tiff";
+    case FrameFormat::png: return "png";
   }
   return "?";
 }
@@ -493,7 +661,20 @@ std::string frame_file_name(const std::string& pattern, int index, const std::st
 InputSpec frame_input_spec(const std::vector<Field>& fields, const FrameWriteOptions& options) {
   InputSpec spec;
   spec.files = std::string(kWritePattern) + extension_of(options.format);
-  for (Field field : fields) spec.channels[field] = reference::channel_name(field);
+  if (options.format != FrameFormat::png) {
+    for (Field field : fields) spec.channels[field] = reference::channel_name(field);
+    return spec;
+  }
+  // In swell's field order, as write_image_frame stores them.
+  std::vector<Field> ordered;
+  for (Field field : reference::kAllFields) {
+    if (std::find(fields.begin(), fields.end(), field) != fields.end()) ordered.push_back(field);
+  }
+  const auto names = png_channel_names(ordered.size());
+  for (std::size_t c = 0; c < ordered.size(); ++c) {
+    spec.channels[ordered[c]] = names[c];
+    spec.value_ranges[ordered[c]] = options.png_range;
+  }
   return spec;
 }
 
@@ -521,10 +702,14 @@ std::vector<fs::path> write_frame(const fs::path& directory, const Grid& grid,
     }
     fields.push_back(field);
   }
+  if (options.format == FrameFormat::png) {
+    require_png_options(options);
+    (void)png_channel_names(fields.size());  // at most 4 fields
+  }
   if (options.format != FrameFormat::npy) {
     if (options.float64) {
       throw InvalidInput("float64 frames are written as .npy only (EXR and TIFF frames are "
-                         "float32)");
+                         "float32, PNG frames 16-bit integers)");
     }
     if (!frame.imaginary.empty()) {
       throw InvalidInput(fmt::format("frame {} carries imaginary parts, which {} channels cannot "
@@ -541,7 +726,7 @@ std::vector<fs::path> write_frame(const fs::path& directory, const Grid& grid,
 
   const std::string name = frame_file_name(std::string(kWritePattern) + extension_of(options.format), index);
   if (options.format != FrameFormat::npy) {
-    return write_image_frame(directory / name, options.format, grid, fields, frame);
+    return write_image_frame(directory / name, grid, fields, frame, options);
   }
   std::vector<fs::path> written;
   for (Field field : fields) {
@@ -575,7 +760,8 @@ InputSpec write_frames(const fs::path& directory, const FrameSequence& frames,
   return frame_input_spec(fields, options);
 }
 
-reference::FrameSequence read_frames(const CaseFile& case_file, const std::string& pattern_override) {
+reference::FrameSequence read_frames(const CaseFile& case_file, const std::string& pattern_override,
+                                     const FieldFilter& keep) {
   const auto& ocean = case_file.ocean;
   const auto& input = case_file.input;
   const std::string origin = pattern_override.empty() ? "[input] files" : "--input";
@@ -587,6 +773,19 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
     throw InvalidInput("the case's [input] names no field: give at least one of height, slope_x, "
                        "slope_y, disp_x, disp_y, jacobian with its channel or file suffix");
   }
+  for (const auto& [field, range] : input.value_ranges) {
+    if (!input.channels.count(field)) {
+      throw InvalidInput(fmt::format("[input] value_range gives a range for {}, which [input] does "
+                                     "not provide",
+                                     reference::field_name(field)));
+    }
+  }
+  // OpenImageIO's EXR reader on OpenEXRCore: the classic one converts each float of an
+  // interleaved multi-channel read byte by byte (Xdr), which made reading six fields of 64
+  // frames of 512² take 0.4 s of CPU more than reading one; through the core it costs about
+  // the same as one field (bench gate/512/64).
+  static const bool use_openexr_core = OIIO::attribute("openexr:core", 1);
+  (void)use_openexr_core;
   const std::string pattern =
       pattern_override.empty() ? (case_file.directory / input.files).string() : pattern_override;
   const StoredFormat format = stored_format_of(pattern, origin);
@@ -612,6 +811,7 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
   const Field first_field = input.channels.begin()->first;
   auto read_frame = [&](int f, FieldFrame& frame) {
     double roundoff = 0;
+    const std::function<bool(Field)> keep_here = [&](Field field) { return !keep || keep(f, field); };
     frame.time = ocean.time(f);
     for (const auto& [field, channel] : input.channels) {
       if (!one_file_per_field(format) && field != first_field) break;  // one file for all fields
@@ -630,11 +830,21 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
       double u = 0;
       switch (format) {
         case StoredFormat::exr:
-        case StoredFormat::tiff: u = read_image_frame(path, format, grid, input.channels, frame); break;
+        case StoredFormat::tiff:
+        case StoredFormat::png:
+          u = read_image_frame(path, format, grid, input, keep_here, frame);
+          break;
         case StoredFormat::npy: u = read_npy_field(path, grid, field, frame); break;
         case StoredFormat::raw: u = read_raw_field(path, grid, field, input.raw_type, frame); break;
       }
       roundoff = std::max(roundoff, u);
+    }
+    // One file per field: each was read whole (and checked); drop those not wanted.
+    for (const auto& [field, channel] : input.channels) {
+      if (!keep_here(field)) {
+        frame.fields.erase(field);
+        frame.imaginary.erase(field);
+      }
     }
     return roundoff;
   };

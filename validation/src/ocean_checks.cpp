@@ -199,6 +199,17 @@ class Analysis {
       if (w.mu >= floor_ && w.mu > 0) resolved_.push_back(w);
     }
     if (resolved_.empty()) {
+      const bool rounding_hides_all = std::any_of(
+          all_half_plane_.begin(), all_half_plane_.end(), [](const Wave& w) { return w.mu > 0; });
+      if (rounding_hides_all) {
+        // Integer frames with a coarse quantization step (8-bit PNG) come here.
+        throw InvalidInput(fmt::format(
+            "the stored values' rounding (unit roundoff {:.2g} relative to the height's rms) "
+            "hides every wave vector: none carries 10⁶ times the rounding noise, so no check "
+            "can judge these frames ({}); store floats, or 16-bit integers with a value_range "
+            "close to the values' extent",
+            u_, c_.describe()));
+      }
       throw InvalidInput("no wave vector of the grid carries resolvable energy under the case's "
                          "spectrum (" + c_.describe() + ")");
     }

@@ -98,6 +98,7 @@ void expect_same(const CaseFile& a, const CaseFile& b) {
   EXPECT_EQ(a.input.files, b.input.files);
   EXPECT_EQ(a.input.channels, b.input.channels);
   EXPECT_EQ(a.input.raw_type, b.input.raw_type);
+  EXPECT_EQ(a.input.value_ranges, b.input.value_ranges);
 }
 
 TEST(CaseFile, IssueExampleParsesToTheCaseItDescribes) {
@@ -288,6 +289,21 @@ std::vector<std::pair<std::string, CaseFile>> round_trip_cases() {
     cases.emplace_back("pierson_moskowitz_mitsuyasu", c);
   }
   {
+    // PNG frames: one value range for every field, written as [low, high] ...
+    CaseFile c = base_case();
+    c.ocean.spectrum = {"jonswap", {{"hs", 2.0}, {"tp", 7.0}}, {}};
+    c.ocean.spreading = {"cos2s", {{"s", 10.0}}, {}};
+    c.input.files = "png/frame_%04d.png";
+    c.input.channels = {{Field::height, "R"}, {Field::disp_x, "G"}, {Field::disp_y, "B"}};
+    c.input.value_ranges = {{Field::height, {-4.0, 4.0}}, {Field::disp_x, {-4.0, 4.0}},
+                            {Field::disp_y, {-4.0, 4.0}}};
+    cases.emplace_back("png_one_range", c);
+    // ... and one per field, as a table.
+    c.input.value_ranges = {{Field::height, {-4.5, 4.5}}, {Field::disp_x, {-2.0, 2.25}},
+                            {Field::disp_y, {-2.0, 2.25}}};
+    cases.emplace_back("png_ranges_by_field", c);
+  }
+  {
     // Doubles whose shortest decimal form is long, tiny or huge.
     CaseFile c = base_case();
     c.ocean.grid = {5, 3, 1.0 / 3.0, 0.1 + 0.2};
@@ -465,8 +481,31 @@ std::vector<Malformed> malformed_cases() {
        {"bad.toml:20:", "[input] files", "unsupported conversion '%s'"}},
       {"files_two_conversions", edit("files = \"f_%04d.exr\"", "files = \"f_%d_%d.exr\""),
        {"[input] files", "more than one conversion"}},
-      {"files_extension", edit("files = \"f_%04d.exr\"", "files = \"f_%04d.png\""),
-       {"[input] files", "'.png'", ".exr"}},
+      {"files_extension", edit("files = \"f_%04d.exr\"", "files = \"f_%04d.jpg\""),
+       {"[input] files", "'.jpg'", ".png"}},
+      {"value_range_one_number", edit("height = \"h\"", "height = \"h\"\nvalue_range = 4.0"),
+       {"bad.toml:22:", "[input] value_range", "[low, high]"}},
+      {"value_range_three", edit("height = \"h\"", "height = \"h\"\nvalue_range = [1, 2, 3]"),
+       {"[input] value_range", "[low, high]"}},
+      {"value_range_string", edit("height = \"h\"", "height = \"h\"\nvalue_range = [\"-4\", 4]"),
+       {"[input] value_range", "[low, high]"}},
+      {"value_range_reversed", edit("height = \"h\"", "height = \"h\"\nvalue_range = [4.0, -4.0]"),
+       {"[input] value_range", "[4, -4]", "low < high"}},
+      {"value_range_empty_interval", edit("height = \"h\"", "height = \"h\"\nvalue_range = [1, 1]"),
+       {"[input] value_range", "low < high"}},
+      {"value_range_nan", edit("height = \"h\"", "height = \"h\"\nvalue_range = [nan, 4.0]"),
+       {"[input] value_range", "finite"}},
+      {"value_range_unknown_field",
+       edit("height = \"h\"", "height = \"h\"\nvalue_range = { heigth = [-4.0, 4.0] }"),
+       {"[input] value_range", "unknown field 'heigth'", "disp_x"}},
+      {"value_range_field_not_given",
+       edit("height = \"h\"", "height = \"h\"\nvalue_range = { disp_x = [-4.0, 4.0] }"),
+       {"[input] value_range", "disp_x", "does not provide"}},
+      {"value_range_field_bad_pair",
+       edit("height = \"h\"", "height = \"h\"\nvalue_range = { height = [4.0] }"),
+       {"[input] value_range", "height: must be"}},
+      {"value_range_empty_table", edit("height = \"h\"", "height = \"h\"\nvalue_range = {}"),
+       {"[input] value_range", "empty table"}},
       {"files_number", edit("files = \"f_%04d.exr\"", "files = 3"), {"[input] files", "a string"}},
       {"channel_empty", edit("height = \"h\"", "height = \"\""), {"[input] height", "must name"}},
       {"input_without_fields", edit("height = \"h\"", ""), {"[input] names no field"}},

@@ -515,8 +515,8 @@ TEST_F(BrokenFrames, FramePatternProblems) {
   write(FrameFormat::exr);
   spec_.files = "frame_%04s.exr";
   read_error({"[input] files", "unsupported conversion"});
-  spec_.files = "frame.png";
-  read_error({"[input] files", ".png"});
+  spec_.files = "frame.jpg";
+  read_error({"[input] files", ".jpg"});
   spec_.files = "frame_0000.exr";
   read_error({"no frame number", "3 frames"});
   spec_.files = "";
@@ -526,16 +526,154 @@ TEST_F(BrokenFrames, FramePatternProblems) {
   read_error({"names no field"});
 }
 
-TEST_F(BrokenFrames, IntegerTiffIsNotAField) {
-  auto out = OIIO::ImageOutput::create(file("int_0.tif"));
-  OIIO::ImageSpec spec(kNx, kNy, 1, OIIO::TypeDesc::UINT16);
-  ASSERT_TRUE(out->open(file("int_0.tif"), spec));
-  std::vector<std::uint16_t> values(kNx * kNy, 7);
-  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, values.data()));
-  out->close();
+// Integer pixels carry no unit: without [input] value_range they are refused; with it they
+// read as low + (high − low)·p/65535. A float channel refuses a value range, and integer types
+// other than 8- and 16-bit unsigned are refused.
+TEST_F(BrokenFrames, IntegerImagesNeedAValueRangeAndFloatChannelsRefuseOne) {
+  auto write_integer_tiff = [&](const std::string& name, OIIO::TypeDesc type) {
+    auto out = OIIO::ImageOutput::create(file(name));
+    OIIO::ImageSpec spec(kNx, kNy, 1, type);
+    ASSERT_TRUE(out->open(file(name), spec));
+    std::vector<std::uint16_t> values(kNx * kNy, 7);
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, values.data()));
+    out->close();
+  };
+  write_integer_tiff("int_0.tif", OIIO::TypeDesc::UINT16);
   spec_.files = "int_%d.tif";
   spec_.channels = {{Field::height, "Y"}};
-  read_error({"int_0.tif", "uint16", "floating-point"}, 1);
+  read_error({"int_0.tif", "channel 'Y' for height", "16-bit integers", "value_range"}, 1);
+
+  spec_.value_ranges[Field::height] = {-1.0, 2.0};
+  const auto back = read_frames(the_case(1));
+  // p/65535 passes through float (OpenImageIO's normalized pixel): 2⁻²⁴ relative, far below
+  // the quantization step 3/65535.
+  for (double v : back.frames[0].fields.at(Field::height)) ASSERT_NEAR(v, -1.0 + 3.0 * 7 / 65535, 1e-6);
+
+  write_integer_tiff("wide_0.tif", OIIO::TypeDesc::INT32);
+  spec_.files = "wide_%d.tif";
+  read_error({"wide_0.tif", "stores int values", "8- or 16-bit unsigned"}, 1);
+
+  write(FrameFormat::exr);
+  spec_.value_ranges[Field::disp_x] = {-1.0, 1.0};
+  read_error({"frame_0000.exr", "channel 'dx' for disp_x", "need no [input] value_range"});
+  spec_.value_ranges.clear();
+  spec_.value_ranges[Field::slope_y] = {-1.0, 1.0};  // a field the input does not provide
+  read_error({"value_range", "slope_y", "does not provide"});
+}
+
+// ------------------------------------------------------------------ integer images
+
+// Values of a few metres, as an engine's heights and displacements are.
+FrameSequence make_metres(const std::vector<Field>& fields, unsigned seed) {
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> u(-3, 3);
+  FrameSequence s = make_sequence(fields, false, seed);
+  for (auto& frame : s.frames) {
+    for (auto& [field, values] : frame.fields) {
+      for (auto& v : values) v = u(random);
+    }
+  }
+  return s;
+}
+
+// PNG frames hold 16-bit pixels standing for values through the value range: every value
+// comes back within half a quantization step q = (high − low)/65535 of the value written, on
+// the channels R, G, B in swell's field order; the unit roundoff is the quantization's,
+// q/√(12 mean v²) (largest over fields and frames).
+TEST_F(FrameIo, PngRoundTripIsWithinHalfAQuantizationStep) {
+  const auto frames = make_metres({Field::disp_y, Field::height, Field::disp_x}, 21);
+  FrameWriteOptions write;
+  write.format = FrameFormat::png;
+  write.png_range = {-4.0, 4.0};
+  const InputSpec spec = write_frames(dir_, frames, write);
+  EXPECT_EQ(spec.files, "frame_%04d.png");
+  EXPECT_EQ(spec.channels.at(Field::height), "R");
+  EXPECT_EQ(spec.channels.at(Field::disp_x), "G");
+  EXPECT_EQ(spec.channels.at(Field::disp_y), "B");
+  ASSERT_EQ(spec.value_ranges.size(), 3u);
+  for (const auto& [field, range] : spec.value_ranges) {
+    EXPECT_EQ(range, (swell::validation::IntegerRange{-4.0, 4.0}));
+  }
+  auto in = OIIO::ImageInput::open(file("frame_0001.png"));
+  ASSERT_TRUE(in) << OIIO::geterror();
+  EXPECT_EQ(in->spec().format, OIIO::TypeDesc::UINT16);
+  EXPECT_EQ(in->spec().nchannels, 3);
+  in->close();
+
+  const auto back = read_frames(case_for(dir_, spec));
+  const double step = 8.0 / 65535;
+  double largest_error = 0, roundoff = 0;
+  for (int f = 0; f < kFrames; ++f) {
+    for (const auto& [field, want] : frames.frames[f].fields) {
+      const auto& got = back.frames[f].fields.at(field);
+      double sum = 0;
+      for (std::size_t k = 0; k < want.size(); ++k) {
+        largest_error = std::max(largest_error, std::abs(got[k] - want[k]));
+        sum += got[k] * got[k];
+      }
+      roundoff = std::max(roundoff, step / std::sqrt(12 * sum / double(got.size())));
+    }
+  }
+  EXPECT_LE(largest_error, step / 2 * (1 + 1e-6));
+  EXPECT_GT(largest_error, step / 100);  // quantized, not stored exactly
+  EXPECT_NEAR(back.unit_roundoff, roundoff, 1e-12 * roundoff);
+}
+
+// An 8-bit grey PNG from another writer: one channel, Y, pixel p ↦ low + (high − low)·p/255,
+// its channel found by name or, alone, by position.
+TEST_F(FrameIo, EightBitGreyPngThroughTheValueRange) {
+  std::vector<std::uint8_t> pixels(kNx * kNy);
+  for (int k = 0; k < kNx * kNy; ++k) pixels[k] = static_cast<std::uint8_t>(37 * k % 256);
+  auto out = OIIO::ImageOutput::create(file("grey_0.png"));
+  ASSERT_TRUE(out->open(file("grey_0.png"), OIIO::ImageSpec(kNx, kNy, 1, OIIO::TypeDesc::UINT8)));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
+  out->close();
+  for (const std::string channel : {"Y", "eta"}) {
+    SCOPED_TRACE(channel);
+    InputSpec input;
+    input.files = "grey_%d.png";
+    input.channels = {{Field::height, channel}};
+    input.value_ranges = {{Field::height, {-2.0, 3.0}}};
+    const auto back = read_frames(case_for(dir_, input, 1));
+    const auto& h = back.frames[0].fields.at(Field::height);
+    for (int k = 0; k < kNx * kNy; ++k) ASSERT_NEAR(h[k], -2.0 + 5.0 * pixels[k] / 255, 1e-6) << k;
+  }
+}
+
+TEST_F(FrameIo, PngWritingRefusesWhatItCannotStore) {
+  const auto frames = make_metres({Field::height, Field::disp_x}, 22);
+  FrameWriteOptions write;
+  write.format = FrameFormat::png;
+  expect_invalid([&] { write_frames(dir_, frames, write); }, {"value range", "low < high"});
+  write.png_range = {-1.0, 1.0};  // the values reach ±3 m: never clipped
+  expect_invalid([&] { write_frames(dir_, frames, write); },
+                 {"frame_0000.png", "outside the PNG value range [-1, 1]"});
+  write.png_range = {-4.0, 4.0};
+  expect_invalid([&] { write_frames(dir_, make_metres(kAll, 23), write); }, {"at most 4 channels"});
+}
+
+// ------------------------------------------------------------------ fields read but not kept
+
+// read_frames' filter drops fields after reading them: what it keeps is bit-exact, and a
+// non-finite value in a field it drops is still reported, naming the file and the field.
+TEST_F(BrokenFrames, FieldsNotKeptAreStillReadAndChecked) {
+  for (FrameFormat format : {FrameFormat::exr, FrameFormat::npy}) {
+    SCOPED_TRACE(swell::validation::to_string(format));
+    fs::remove_all(dir_);
+    write(format);
+    const auto keep = [](int frame, Field field) { return frame != 1 || field == Field::height; };
+    const auto back = read_frames(the_case(), "", keep);
+    EXPECT_EQ(back.frames[0].fields.size(), kSome.size());
+    EXPECT_EQ(back.frames[1].fields.size(), 1u);
+    EXPECT_EQ(back.frames[1].fields.at(Field::height), frames_.frames[1].fields.at(Field::height));
+    EXPECT_EQ(back.frames[2].fields.at(Field::jacobian), frames_.frames[2].fields.at(Field::jacobian));
+
+    frames_.frames[1].fields.at(Field::disp_x)[3 * kNx + 5] = std::numeric_limits<double>::infinity();
+    spec_ = write_frames(dir_, frames_, {format, false});
+    expect_invalid([&] { (void)read_frames(the_case(), "", keep); },
+                   {format == FrameFormat::exr ? "frame_0001.exr" : "frame_0001_dx.npy", "disp_x",
+                    "+Inf at (i, j) = (5, 3)", "1 non-finite value in all"});
+  }
 }
 
 }  // namespace

@@ -3,18 +3,23 @@
 // gate's family-wise false-alarm rate is within the binomial bound of its α (label
 // "calibration").
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <boost/math/distributions/binomial.hpp>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <set>
 
 #include "swell/impls/synthesizer.hpp"
+#include "swell/validation/case_file.hpp"
+#include "swell/validation/frame_io.hpp"
 #include "swell/validation/gate.hpp"
 #include "test_engine.hpp"
 
 namespace {
 
+using swell::reference::Field;
 using swell::reference::Grid;
 using swell::reference::OceanCase;
 using swell::test::EngineBug;
@@ -205,6 +210,53 @@ TEST(GateCalibration, FamilyWiseFalseAlarmRateOverTwoHundredSeeds) {
               << " right engines failed (bound " << bound << ")\n";
     EXPECT_LE(failed, bound) << "α = " << alpha;
   }
+}
+
+// The same right engines through 16-bit PNG frames: the quantization noise (u = q/√(12 mean v²))
+// must not raise the false-alarm rate above α. Frames of height and the two
+// displacements (R, G, B), value range ±1.05 × the largest value of the first seed's frames.
+TEST(GateCalibration, SixteenBitPngFalseAlarmRateOverTwoHundredSeeds) {
+  namespace fs = std::filesystem;
+  OceanCase base = catalogue_case();
+  base.grid = Grid::create(64, 64, 400, 400);
+  base.spreading.numbers["s"] = 10.0;
+  const fs::path directory =
+      fs::temp_directory_path() / ("swell_png_calibration_" + std::to_string(::getpid()));
+  const int seeds = 200;
+  const double alpha = 0.05;
+  int failed = 0;
+  double largest_roundoff = 0;
+  swell::validation::FrameWriteOptions write;
+  write.format = swell::validation::FrameFormat::png;
+  for (int s = 0; s < seeds; ++s) {
+    OceanCase c = base;
+    c.seed = 600000 + s;
+    auto frames = swell::impls::Synthesizer(c, {"fftw", swell::impls::Precision::f32}).frames();
+    double largest = 0;
+    for (auto& frame : frames.frames) {
+      for (Field dropped : {Field::slope_x, Field::slope_y, Field::jacobian}) frame.fields.erase(dropped);
+      for (const auto& [field, values] : frame.fields) {
+        for (double v : values) largest = std::max(largest, std::abs(v));
+      }
+    }
+    write.png_range = {-1.05 * largest, 1.05 * largest};
+    fs::remove_all(directory);
+    CaseFile case_file = as_case_file(c);
+    case_file.input = swell::validation::write_frames(directory, frames, write);
+    swell::validation::write_case_file(directory / "case.toml", case_file);
+    GateOptions options;
+    options.alpha = alpha;
+    const auto report = swell::validation::run_gate(directory / "case.toml", options);
+    failed += !report.passed();
+    largest_roundoff = std::max(largest_roundoff, report.unit_roundoff);
+  }
+  fs::remove_all(directory);
+  const boost::math::binomial_distribution<double> law(seeds, alpha);
+  const int bound = int(boost::math::quantile(boost::math::complement(law, 1e-3)));
+  std::cout << "[ calibration ] gate on 16-bit PNG at α = " << alpha << ": " << failed << " of "
+            << seeds << " right engines failed (bound " << bound << "); unit roundoff up to "
+            << largest_roundoff << "\n";
+  EXPECT_LE(failed, bound);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <fmt/format.h>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -437,7 +438,7 @@ TEST(GateVerdict, EqualsTheOceanChecksAtTheSharedAlphaOnAnyNumberOfThreads) {
   }
 }
 
-// Frames written to disk and judged from there — the gate reads every frame's height and the
+// Frames written to disk and judged from there — the gate keeps every frame's height and the
 // other fields of the first and last frames only — give the verdict of the frames in memory.
 TEST_F(GateFiles, FromDiskEqualsInMemory) {
   for (FrameFormat format : {FrameFormat::exr, FrameFormat::npy}) {
@@ -486,6 +487,85 @@ TEST_F(GateFiles, AMissingFileOfAMiddleFrameIsNamed) {
   } catch (const InvalidInput& e) {
     EXPECT_TRUE(contains(e.what(), "frame_0002_dx.npy: missing frame file (frame 2 of 4, disp_x)"))
         << e.what();
+  }
+}
+
+// Every field of every frame is read and checked, though only the heights of the frames
+// between the ends are kept: a NaN in a middle frame's displacement is bad input, named.
+TEST_F(GateFiles, ANonFiniteValueInAMiddleFramesFieldIsNamed) {
+  for (FrameFormat format : {FrameFormat::exr, FrameFormat::npy}) {
+    SCOPED_TRACE(swell::validation::to_string(format));
+    const OceanCase c = small_case(5);
+    auto frames = swell::test::render_surface(c);
+    frames.frames[2].fields.at(Field::disp_x)[17 * 64 + 9] = std::numeric_limits<double>::quiet_NaN();
+    swell::validation::FrameWriteOptions write;
+    write.format = format;
+    const fs::path out = dir_ / swell::validation::to_string(format);
+    CaseFile case_file = as_case_file(c);
+    case_file.input = swell::validation::write_frames(out, frames, write);
+    swell::validation::write_case_file(out / "case.toml", case_file);
+    try {
+      (void)swell::validation::run_gate(out / "case.toml");
+      ADD_FAILURE() << "no error";
+    } catch (const InvalidInput& e) {
+      const std::string file = format == FrameFormat::exr ? "frame_0002.exr" : "frame_0002_dx.npy";
+      EXPECT_TRUE(contains(e.what(), file)) << e.what();
+      EXPECT_TRUE(contains(e.what(), "disp_x")) << e.what();
+      EXPECT_TRUE(contains(e.what(), "NaN at (i, j) = (9, 17)")) << e.what();
+    }
+  }
+}
+
+// PNG frames (integers through [input] value_range): a right engine passes at 16 bits and an
+// engine with its energy doubled fails `energy`, diagnosed. At 8 bits the quantization noise
+// (conventions §Tolerances: u = q/√(12 mean v²), here about 1 %) buries every wave vector
+// under the checks' rounding floor: bad input, saying so, not a verdict.
+TEST_F(GateFiles, PngFramesAreJudgedThroughTheirValueRange) {
+  struct Run {
+    int bits;
+    EngineBug bug;
+  };
+  for (const Run run : {Run{16, EngineBug::none}, Run{16, EngineBug::energy_doubled},
+                        Run{8, EngineBug::none}}) {
+    const bool right = run.bug == EngineBug::none;
+    SCOPED_TRACE(fmt::format("{} bits, {}", run.bits, right ? "right" : "energy doubled"));
+    const OceanCase c = small_case(6);
+    auto frames = swell::test::render_surface(c, run.bug);
+    double largest = 0;
+    for (auto& frame : frames.frames) {
+      // R, G, B: height and the displacements.
+      for (Field dropped : {Field::slope_x, Field::slope_y, Field::jacobian}) frame.fields.erase(dropped);
+      for (const auto& [field, values] : frame.fields) {
+        for (double v : values) largest = std::max(largest, std::abs(v));
+      }
+    }
+    swell::validation::FrameWriteOptions write;
+    write.format = FrameFormat::png;
+    write.png_bits = run.bits;
+    write.png_range = {-1.05 * largest, 1.05 * largest};
+    const fs::path out = dir_ / fmt::format("png{}_{}", run.bits, right);
+    CaseFile case_file = as_case_file(c);
+    case_file.input = swell::validation::write_frames(out, frames, write);
+    swell::validation::write_case_file(out / "case.toml", case_file);
+    if (run.bits == 8) {
+      try {
+        (void)swell::validation::run_gate(out / "case.toml");
+        ADD_FAILURE() << "no error";
+      } catch (const InvalidInput& e) {
+        EXPECT_TRUE(contains(e.what(), "rounding")) << e.what();
+        EXPECT_TRUE(contains(e.what(), "16-bit")) << e.what();
+      }
+      continue;
+    }
+    const auto report = swell::validation::run_gate(out / "case.toml");
+    EXPECT_EQ(report.fields, (std::vector<std::string>{"height", "disp_x", "disp_y"}));
+    EXPECT_EQ(report.passed(), right) << failures(report);
+    if (right) continue;
+    const auto energy = std::find_if(report.results.begin(), report.results.end(),
+                                     [](const CheckResult& r) { return r.check == "energy"; });
+    ASSERT_NE(energy, report.results.end());
+    EXPECT_FALSE(energy->passed);
+    EXPECT_TRUE(contains(energy->reason, "energy off by a factor 2")) << energy->reason;
   }
 }
 
@@ -576,14 +656,14 @@ TEST_F(GateCli, BadCasesAndOptionsExitTwo) {
     std::string name, arguments, says;
   };
   write_text(path("unknown_key.toml"), good + "\n[grid2]\nsize = 3\n");
-  std::string png = good;
-  png.replace(png.find("frame_%04d.exr"), 14, "frame_%04d.png");
-  write_text(path("png.toml"), png);
+  std::string jpeg = good;
+  jpeg.replace(jpeg.find("frame_%04d.exr"), 14, "frame_%04d.jpg");
+  write_text(path("jpeg.toml"), jpeg);
   const std::vector<Bad> cases = {
       {"no such case", "--case " + path("nothing.toml"), "nothing.toml"},
       {"unknown section", "--case " + path("unknown_key.toml"), "grid2"},
-      {"png in the case", "--case " + path("png.toml"), "'.png'"},
-      {"png pattern", "--case " + path("case.toml") + " --input " + path("x_%04d.png"), "PNG"},
+      {"jpeg in the case", "--case " + path("jpeg.toml"), "'.jpg'"},
+      {"jpeg pattern", "--case " + path("case.toml") + " --input " + path("x_%04d.jpg"), "'.jpg'"},
       {"missing --case", "", "--case"},
       {"alpha 0", "--case " + path("case.toml") + " --alpha 0", "alpha"},
       {"alpha 1.5", "--case " + path("case.toml") + " --alpha 1.5", "alpha"},
@@ -615,9 +695,36 @@ TEST(DataCases, EveryExampleReadsAndARightEnginePassesIt) {
     EXPECT_FALSE(case_file.input.files.empty()) << "an example for the gate names its frames";
     EXPECT_TRUE(case_file.input.channels.count(Field::height));
     case_file.ocean.frames = std::min(case_file.ocean.frames, 8);
-    const auto report =
-        swell::validation::run_gate(case_file, swell::test::render_surface(case_file.ocean));
+    auto frames = swell::test::render_surface(case_file.ocean);
+    if (case_file.input.value_ranges.empty()) {
+      const auto report = swell::validation::run_gate(case_file, frames);
+      EXPECT_TRUE(report.passed()) << failures(report);
+      continue;
+    }
+    // Integer frames: quantized as the case says (one range for every field; the fields the
+    // case lists, in R, G, B order) and judged from disk.
+    const auto range = case_file.input.value_ranges.begin()->second;
+    for (auto& frame : frames.frames) {
+      for (Field field : swell::reference::kAllFields) {
+        if (!case_file.input.channels.count(field)) frame.fields.erase(field);
+      }
+    }
+    swell::validation::FrameWriteOptions write;
+    write.format = FrameFormat::png;
+    write.png_range = range;
+    const fs::path directory = fs::temp_directory_path() /
+                               ("swell_data_cases_" + std::to_string(::getpid()));
+    fs::remove_all(directory);
+    const auto written = swell::validation::write_frames(directory / "frames", frames, write);
+    EXPECT_EQ(written.channels, case_file.input.channels);
+    EXPECT_EQ(written.value_ranges, case_file.input.value_ranges);
+    case_file.input.files = (directory / case_file.input.files).string();
+    swell::validation::write_case_file(directory / "case.toml", case_file);
+    const auto report = swell::validation::run_gate(directory / "case.toml");
     EXPECT_TRUE(report.passed()) << failures(report);
+    // 16 bits over ±3 m: q/√12 over the rms of disp_y (0.2 m, the smallest field) ≈ 1.3·10⁻⁴.
+    EXPECT_LT(report.unit_roundoff, 2e-4);
+    fs::remove_all(directory);
   }
   EXPECT_GE(count, 3);
 }

@@ -11,6 +11,7 @@
 //                                                                   or in [spectrum])
 //   [synthesis] choppiness = 1.0  loop_period = 0.0  seed = 1
 //   [input]     files = "frame_%04d.exr"  height = "h"  disp_x = "dx" …
+//               value_range = [-4.0, 4.0] (integer images: the values of pixel 0 and the top pixel)
 #include <filesystem>
 #include <map>
 #include <string>
@@ -20,12 +21,25 @@
 
 namespace swell::validation {
 
+// The field values that an integer image's pixel 0 and its largest pixel (255 for 8 bits, 65535
+// for 16) stand for, in the field's unit (metres; 1 for the Jacobian): a pixel p of b bits holds
+// low + (high − low) · p / (2^b − 1).
+struct IntegerRange {
+  double low = 0, high = 0;
+  bool operator==(const IntegerRange& other) const {
+    return low == other.low && high == other.high;
+  }
+};
+
 // Where the frames of a case are and which channel (EXR/TIFF) or file suffix (.npy/.raw) holds
 // each field. A field without a channel is not provided and not checked.
 struct InputSpec {
   std::string files;  // printf pattern with one integer (the frame), relative to the case file
   std::map<reference::Field, std::string> channels;
   std::string raw_type = "float32";  // element type of .raw files: float32 | float64
+  // Per field, for frames stored as 8- or 16-bit integers (PNG, integer TIFF); every integer
+  // channel needs one and a float channel must have none.
+  std::map<reference::Field, IntegerRange> value_ranges;
 };
 
 enum class SpectrumScale {

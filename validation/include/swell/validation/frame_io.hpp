@@ -8,6 +8,10 @@
 //         frame carries imaginary parts (read back into FieldFrame::imaginary).
 //   tiff: as exr, DIR/frame_0000.tif, float32; the channel names, which TIFF cannot hold, go
 //         into the ImageDescription tag ("swell channels: h sx …").
+//   png:  as exr, DIR/frame_0000.png, 8- or 16-bit unsigned integers (written 16-bit unless
+//         FrameWriteOptions::png_bits says 8), each
+//         pixel standing for a value of the field through [input] value_range (pixel 0 ↦ low,
+//         the largest pixel ↦ high); channels R, G, B, A (Y for grey). Integer TIFF reads alike.
 //   raw:  read only: headerless little-endian float32 or float64 ([input] raw_type), ny·nx
 //         values, one file per field and frame named as for npy.
 //
@@ -15,6 +19,7 @@
 // Readers check everything against the case (sizes, channels, frame count, finite values) and
 // throw InvalidInput naming the file and the problem.
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,13 +28,17 @@
 
 namespace swell::validation {
 
-enum class FrameFormat { exr, npy, tiff };
-FrameFormat frame_format_from_string(const std::string& name);  // "exr" | "npy" | "tiff"
+enum class FrameFormat { exr, npy, tiff, png };
+FrameFormat frame_format_from_string(const std::string& name);  // "exr" | "npy" | "tiff" | "png"
 std::string to_string(FrameFormat format);
 
 struct FrameWriteOptions {
   FrameFormat format = FrameFormat::exr;
   bool float64 = false;  // npy only: store float64 instead of float32
+  // png only (required): the values pixel 0 and the largest pixel stand for, every field. A
+  // value outside it cannot be stored: InvalidInput, never clipped.
+  IntegerRange png_range{};
+  int png_bits = 16;  // 8 or 16
 };
 
 // Writes every frame of `frames` into `directory` (created if missing) and returns the InputSpec
@@ -45,7 +54,8 @@ std::vector<std::filesystem::path> write_frame(const std::filesystem::path& dire
                                                const reference::FieldFrame& frame, int index,
                                                const FrameWriteOptions& options);
 // The InputSpec that reads back what write_frame(s) write for these fields:
-// files "frame_%04d.exr" (or .npy, .tif) and each field's channel_name.
+// files "frame_%04d.exr" (or .npy, .tif, .png) and each field's channel_name (PNG: R, G, B, A
+// in swell's field order, with value_range = png_range).
 InputSpec frame_input_spec(const std::vector<reference::Field>& fields,
                            const FrameWriteOptions& options);
 
@@ -59,7 +69,13 @@ std::string frame_file_name(const std::string& pattern, int index, const std::st
 // Reads the frames a case file names (its [input] section), frame times from its [time]
 // section. `pattern_override`, when not empty, replaces input.files (relative to the current
 // directory, as the command line gives it).
+//
+// `keep`, when given, says which fields of which frame to keep: the others are still read and
+// checked (sizes, finite values) but not stored, so that a caller that needs only some fields
+// of some frames (the gate: heights throughout, every field at the ends) saves the memory.
+using FieldFilter = std::function<bool(int frame, reference::Field field)>;
 reference::FrameSequence read_frames(const CaseFile& case_file,
-                                     const std::string& pattern_override = "");
+                                     const std::string& pattern_override = "",
+                                     const FieldFilter& keep = {});
 
 }  // namespace swell::validation

@@ -41,6 +41,7 @@ struct GateReport {
   std::vector<CheckResult> results;
   std::vector<std::string> skipped;    // checks that could not run, with the reason
   double fitted_scale = 1;             // free-scale cases: the engine's spectrum over the case's
+  double unit_roundoff = 0;            // of the values read (FrameSequence::unit_roundoff)
   double seconds = 0;                  // wall time of reading and judging
   double read_seconds = 0;             // of which reading the case and its frames
   bool passed() const;
@@ -50,15 +51,15 @@ struct GateReport {
 GateReport run_gate(const CaseFile& case_file, const reference::FrameSequence& frames,
                     const GateOptions& options = {});
 // Reads the case file and its frames (frame_io.hpp), then judges them. Bad input throws
-// InvalidInput naming the file and the problem. Only what the checks use is read: the height
-// of every frame, and the other fields of the first and the last frame (the two the derived
-// check compares); for one file per field (.npy, .raw) the other frames' files must exist.
+// InvalidInput naming the file and the problem. Every field of every frame is read and checked;
+// only what the checks use is kept: the height of every frame, and the other fields of the
+// first and the last frame (the two the derived check compares).
 GateReport run_gate(const std::filesystem::path& case_file, const GateOptions& options = {});
 
 // One line per check and a verdict line, for the terminal.
 std::string render_gate(const GateReport& report);
 // {"case", "subject", "frames", "nx", "ny", "fields", "alpha", "alpha_per_check",
-//  "statistical_checks", "fitted_scale", "checks": [report.hpp's to_json entries],
+//  "statistical_checks", "fitted_scale", "unit_roundoff", "checks": [report.hpp's to_json entries],
 //  "skipped": [{"check", "reason"}], "passed", "failed", "seconds", "pass"}; strings as valid
 // UTF-8 (malformed bytes become U+FFFD), non-finite numbers null.
 nlohmann::json gate_json(const GateReport& report);
