@@ -9,6 +9,9 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <new>
+#include <utility>
+#include <vector>
 
 #include "backends.hpp"
 
@@ -135,6 +138,51 @@ struct FftwFree {
   void operator()(T* p) const { fftw_free(p); }  // all three libraries free with free()
 };
 
+// Buffers of fftw_malloc'd memory reused across calls: acquire() hands out a free one of the
+// size asked for (or a new one), which returns to the pool when the lease ends. Thread safe,
+// so that a plan's execute() stays callable from several threads at once.
+class ScratchPool {
+ public:
+  class Lease {
+   public:
+    Lease(ScratchPool& pool, std::unique_ptr<char, FftwFree> buffer, std::size_t bytes)
+        : pool_(pool), buffer_(std::move(buffer)), bytes_(bytes) {}
+    Lease(const Lease&) = delete;
+    Lease& operator=(const Lease&) = delete;
+    ~Lease() { pool_.give_back(std::move(buffer_), bytes_); }
+    char* get() const { return buffer_.get(); }
+
+   private:
+    ScratchPool& pool_;
+    std::unique_ptr<char, FftwFree> buffer_;
+    std::size_t bytes_;
+  };
+
+  Lease acquire(std::size_t bytes) {
+    {
+      std::lock_guard lock(mutex_);
+      for (auto it = free_.begin(); it != free_.end(); ++it) {
+        if (it->first != bytes) continue;
+        auto buffer = std::move(it->second);
+        free_.erase(it);
+        return Lease(*this, std::move(buffer), bytes);
+      }
+    }
+    auto* memory = static_cast<char*>(fftw_malloc(bytes));
+    if (!memory) throw std::bad_alloc();
+    return Lease(*this, std::unique_ptr<char, FftwFree>(memory), bytes);
+  }
+
+ private:
+  void give_back(std::unique_ptr<char, FftwFree> buffer, std::size_t bytes) {
+    std::lock_guard lock(mutex_);
+    free_.emplace_back(bytes, std::move(buffer));
+  }
+
+  std::mutex mutex_;
+  std::vector<std::pair<std::size_t, std::unique_ptr<char, FftwFree>>> free_;
+};
+
 unsigned planner_flag(const std::string& planner) {
   if (planner == "estimate") return FFTW_ESTIMATE;
   if (planner == "measure" || planner.empty()) return FFTW_MEASURE;
@@ -210,7 +258,7 @@ class FftwPlan final : public Plan {
       run(in, out);
       return;
     }
-    std::unique_ptr<char, FftwFree> in_copy(static_cast<char*>(F::malloc(s.input_bytes())));
+    auto in_copy = scratch_.acquire(s.input_bytes());
     std::memcpy(in_copy.get(), in, s.input_bytes());
     if (s.placement == Placement::in_place) {
       run(in_copy.get(), in_copy.get());
@@ -218,7 +266,7 @@ class FftwPlan final : public Plan {
     } else if (F::alignment_of(out) == 0) {
       run(in_copy.get(), out);
     } else {
-      std::unique_ptr<char, FftwFree> out_copy(static_cast<char*>(F::malloc(s.output_bytes())));
+      auto out_copy = scratch_.acquire(s.output_bytes());
       run(in_copy.get(), out_copy.get());
       std::memcpy(out, out_copy.get(), s.output_bytes());
     }
@@ -256,6 +304,10 @@ class FftwPlan final : public Plan {
 
   typename Fftw<T>::plan plan_ = nullptr;
   bool copy_input_ = false;
+  // Aligned copies for execute(), kept between calls: allocating them anew each time cost
+  // more than the transform (fft2d/c2r/fftw/fp32/1024: 39 ms against 16.7 ms for FFTW's own
+  // transform; fresh pages fault in on every call).
+  mutable ScratchPool scratch_;
 };
 
 class FftwBackend final : public Backend {

@@ -4,8 +4,7 @@
 
 namespace swell {
 
-void require(bool ok, const std::string& what, const std::string& rule, double value) {
-  if (ok) return;
+void fail_requirement(std::string_view what, std::string_view rule, double value) {
   std::ostringstream message;
   message.precision(17);
   message << what << " must be " << rule << " (got " << value << ")";

@@ -1,5 +1,7 @@
 #include "swell/reference/model_factory.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -7,6 +9,7 @@
 #include <set>
 
 #include "swell/reference/errors.hpp"
+#include "swell/reference/moments.hpp"
 
 namespace swell::reference {
 namespace {
@@ -190,7 +193,9 @@ Dispersion make_dispersion(const ModelSpec& spec) {
                                   number("gravity", kStandardGravity));
 }
 
-FrequencySpectrumPtr make_frequency_spectrum(const ModelSpec& spec) {
+namespace {
+
+FrequencySpectrumPtr build_frequency_spectrum(const ModelSpec& spec) {
   const auto& names = frequency_model_names();
   if (std::find(names.begin(), names.end(), spec.model) == names.end()) {
     throw InvalidInput("unknown spectrum model '" + spec.model + "'; valid: " + join(names));
@@ -230,6 +235,32 @@ FrequencySpectrumPtr make_frequency_spectrum(const ModelSpec& spec) {
   p.small_wave_cutoff = r.number_or("small_wave_cutoff", 0);
   p.against_wind_factor = r.number_or("against_wind_factor", 1);
   return Phillips::create(p, dispersion);
+}
+
+}  // namespace
+
+FrequencySpectrumPtr make_frequency_spectrum(const ModelSpec& spec) {
+  try {
+    auto spectrum = build_frequency_spectrum(spec);
+    // Its energy m0 must exist: hs = 1e300 m builds (m0 = hs²/16 overflows only when asked)
+    // and hs = 1e-300 m underflows to a sea of no energy. One quadrature, about 0.1 ms.
+    const double m0 = spectral_moment(*spectrum, 0);
+    if (!(std::isfinite(m0) && m0 > 0)) {
+      throw NumericalError(fmt::format("its energy m0 = {:g} m² is not finite and positive", m0));
+    }
+    return spectrum;
+  } catch (const NumericalError& e) {
+    // Each parameter is in its own valid range, yet together they lie so far outside any sea
+    // (tp = 4e65 s puts the peak at ω = 1.6e-65 rad/s) that the normalization or a moment
+    // cannot be computed: that is bad input, not a numerical failure of swell's.
+    std::string given;
+    for (const auto& [name, value] : spec.numbers) {
+      given += fmt::format("{}{} = {:g}", given.empty() ? "" : ", ", name, value);
+    }
+    throw InvalidInput(fmt::format("spectrum model '{}' cannot be evaluated with {}: {}",
+                                   spec.model, given.empty() ? "these parameters" : given,
+                                   e.what()));
+  }
 }
 
 SpreadingPtr make_spreading(const ModelSpec& spec, double omega_p) {

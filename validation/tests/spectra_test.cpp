@@ -637,6 +637,25 @@ TEST(ModelFactory, NonPhysicalValuesAreNamed) {
   }
 }
 
+// Each value in its own range, yet the whole far outside any sea: the normalization or a
+// moment cannot be computed (tp = 4e65 s puts the peak at 1.6e-65 rad/s; hs = 1e300 m
+// overflows m0 = hs²/16; hs = 1e-300 m underflows it). Bad input naming the model and the
+// values, never a NumericalError (which the CLI reports as exit 1, a failure of swell's).
+TEST(ModelFactory, ParametersOutsideAnySeaAreBadInput) {
+  const std::vector<sr::ModelSpec> absurd = {
+      {"tma", {{"hs", 3.0}, {"tp", 4e65}, {"depth", 10.0}}, {}},
+      {"jonswap", {{"hs", 1e300}, {"tp", 8.0}}, {}},
+      {"jonswap", {{"hs", 1e-300}, {"tp", 8.0}}, {}},
+      {"jonswap", {{"hs", 3.0}, {"tp", 1e-300}}, {}},
+  };
+  for (const auto& spec : absurd) {
+    const auto msg = invalid_input_message([&] { (void)sr::make_frequency_spectrum(spec); });
+    SCOPED_TRACE(msg);
+    EXPECT_TRUE(mentions(msg, "spectrum model '" + spec.model + "' cannot be evaluated"));
+    EXPECT_TRUE(mentions(msg, "tp = "));
+  }
+}
+
 TEST(ModelFactory, ValidSpecsMatchDirectFactories) {
   const auto j = sr::make_frequency_spectrum({"jonswap", {{"hs", 3.0}, {"tp", 9.0}, {"gamma", 2.5}}, {}});
   const auto j_direct = sr::Jonswap::from_hs_tp(3.0, 9.0, {2.5, 0.07, 0.09});

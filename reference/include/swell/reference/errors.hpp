@@ -6,6 +6,7 @@
 //  - A violated internal invariant is a bug: assert/abort, never an exception.
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace swell {
 
@@ -19,7 +20,14 @@ class NumericalError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Throws InvalidInput "<what> must be <rule> (got <value>)" unless ok.
-void require(bool ok, const std::string& what, const std::string& rule, double value);
+// Throws InvalidInput "<what> must be <rule> (got <value>)".
+[[noreturn]] void fail_requirement(std::string_view what, std::string_view rule, double value);
+
+// Throws InvalidInput "<what> must be <rule> (got <value>)" unless ok. Inline and on string
+// views, so that a check in a function evaluated millions of times (a spectrum under
+// quadrature) builds no string unless it fails.
+inline void require(bool ok, std::string_view what, std::string_view rule, double value) {
+  if (!ok) fail_requirement(what, rule, value);
+}
 
 }  // namespace swell
