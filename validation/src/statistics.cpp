@@ -4,7 +4,9 @@
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/special_functions/gamma.hpp>
+#include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include "swell/reference/errors.hpp"
@@ -66,7 +68,10 @@ double WeightedExponentialSum::saddlepoint(double x) const {
     lo = 0;
     hi = (1 - max_weight_ / x) / max_weight_;
   }
-  double s = 0.5 * (lo + hi);
+  // Start from the normal approximation K'(s) ≈ mean + variance·s when it lies inside the
+  // bracket (Newton then converges in a few steps), else from the bracket's middle.
+  double s = (x - mean_) / variance_;
+  if (!(s > lo && s < hi)) s = 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 200; ++iteration) {
     double d1 = 0, d2 = 0;
     for (double w : weights_) {
@@ -128,7 +133,19 @@ double WeightedExponentialSum::two_sided_p(double x) const {
 double WeightedExponentialSum::quantile(double p) const {
   double lo = 0, hi = mean_ + 60 * std::sqrt(variance_) + 60 * max_weight_;
   const bool upper = p > 0.5;  // search the tail in which p is resolved best
-  for (int i = 0; i < 200 && hi - lo > 1e-14 * hi; ++i) {
+  // f rises from < 0 at x = 0 to > 0 at hi when p is inside what the tails resolve; TOMS 748
+  // (Alefeld, Potra & Shi 1995) then finds its root in about 10 tail evaluations where
+  // bisection to the same 1e-14 took about 47 (the gate computes some 200 quantiles, each
+  // tail a saddlepoint solve over up to 10⁵ weights).
+  auto f = [&](double x) { return upper ? (1 - p) - survival(x) : cdf(x) - p; };
+  const double f_lo = f(lo), f_hi = f(hi);
+  if (f_lo < 0 && f_hi > 0) {
+    std::uintmax_t iterations = 200;
+    const auto [a, b] = boost::math::tools::toms748_solve(
+        f, lo, hi, f_lo, f_hi, boost::math::tools::eps_tolerance<double>(46), iterations);
+    return 0.5 * (a + b);
+  }
+  for (int i = 0; i < 200 && hi - lo > 1e-14 * hi; ++i) {  // p beyond what the tails resolve
     const double mid = 0.5 * (lo + hi);
     const bool below = upper ? survival(mid) > 1 - p : cdf(mid) < p;
     (below ? lo : hi) = mid;
