@@ -167,6 +167,7 @@ GateReport sample_report() {
   report.ny = 64;
   report.fields = {"height", "disp_x"};
   report.alpha = 1e-3;
+  report.unit_roundoff = 0x1p-24;
   report.statistical_checks = 5;
   report.alpha_per_check = 2e-4;
   report.seconds = 0.25;
@@ -239,6 +240,7 @@ TEST(GateRender, APassingReportSaysPass) {
   report.skipped.clear();
   const std::string text = swell::validation::render_gate(report);
   EXPECT_TRUE(contains(text, "verdict: PASS — 1 check passed; family-wise α = 0.001")) << text;
+  EXPECT_TRUE(contains(text, "unit roundoff 6e-08")) << text;  // 2⁻²⁴, the floor judged by
   EXPECT_TRUE(report.passed());
 }
 
@@ -246,8 +248,9 @@ TEST(GateJson, CarriesWhatTheTableShows) {
   const auto report = sample_report();
   const auto json = swell::validation::gate_json(report);
   for (const char* key : {"case", "subject", "frames", "nx", "ny", "fields", "alpha",
-                          "alpha_per_check", "statistical_checks", "fitted_scale", "checks",
-                          "skipped", "passed", "failed", "seconds", "pass"}) {
+                          "alpha_per_check", "statistical_checks", "fitted_scale",
+                          "unit_roundoff", "checks", "skipped", "passed", "failed", "seconds",
+                          "pass"}) {
     EXPECT_TRUE(json.contains(key)) << key;
   }
   EXPECT_EQ(json["case"], report.case_path);
@@ -256,6 +259,7 @@ TEST(GateJson, CarriesWhatTheTableShows) {
   EXPECT_EQ(json["failed"], 2);
   EXPECT_EQ(json["statistical_checks"], 5);
   EXPECT_EQ(json["alpha"].get<double>(), 1e-3);
+  EXPECT_EQ(json["unit_roundoff"].get<double>(), 0x1p-24);
   ASSERT_EQ(json["checks"].size(), 3u);
   const auto& dispersion = json["checks"][1];
   EXPECT_EQ(dispersion["check"], "dispersion.residual");
