@@ -99,6 +99,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"spectrum --model jonswap --hs 1 --tp 5 --gamma 0.5", "gamma"},
         BadInput{"spectrum --model tma --hs 1 --tp 5 --depth -3", "depth"},
         BadInput{"spectrum --model tma --hs 1 --tp 5", "depth"},
+        // Each value in range, the whole outside any sea: bad input, not a numerical failure.
+        BadInput{"spectrum --model tma --hs 3 --tp 4e65 --depth 10", "cannot be evaluated"},
+        BadInput{"spectrum --model jonswap --hs 1e300 --tp 8", "cannot be evaluated"},
         BadInput{"spectrum --model jonswap --hs 1 --tp 5 --alpha 0.01", "exactly one of"},
         BadInput{"spectrum --model jonswap --hs 1 --tp 5 --normalization dvn", "dnv"},
         BadInput{"spectrum --model jonswap --hs 1 --tp 5 --omega 1:2", "a:b:n"},
