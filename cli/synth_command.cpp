@@ -1,7 +1,8 @@
 // swell synth (--case FILE | --model M [params]) [--spreading S [params]] --impl NAME --n N
 //             [--ny N] --length L [--length-y L] [--seed S] [--frames F --dt DT] [--t0 T]
 //             [--depth H] [--gravity G] [--wind-dir DEG] [--choppiness C] [--loop-period T]
-//             [--precision fp32|fp64] [--format exr|npy|tiff] --out DIR [--json FILE|-]
+//             [--precision fp32|fp64] [--format exr|npy|tiff|png [--value-range LO,HI]]
+//             --out DIR [--json FILE|-]
 //
 // Synthesizes the frames of an ocean case (docs/conventions.md §Amplitudes) with one transform
 // backend and writes them to DIR (frame_0000.exr, …, docs/case_files.md) with DIR/case.toml, a
@@ -83,6 +84,7 @@ struct SynthOptions {
 
   std::string precision = "fp32";
   std::string format = "exr";
+  std::vector<double> value_range;  // png: the metres pixel 0 and pixel 65535 stand for
   std::string out;
   std::string json;
 
@@ -194,6 +196,23 @@ int run_synth(const SynthOptions& o) {
   write_options.format = validation::frame_format_from_string(o.format);
   write_options.float64 =
       precision == impls::Precision::f64 && write_options.format == validation::FrameFormat::npy;
+  // PNG: 16 bits through a value range, and room for three fields (R, G, B): the height and
+  // the horizontal displacements, what a game engine's heightmap textures hold.
+  const bool png = write_options.format == validation::FrameFormat::png;
+  if (png != !o.value_range.empty()) {
+    throw InvalidInput(png ? "--format png needs --value-range LO,HI: the values (m) that pixel 0 "
+                             "and pixel 65535 stand for, such as -4,4"
+                           : "--value-range applies to --format png only");
+  }
+  if (png) {
+    if (o.value_range.size() != 2) {
+      throw InvalidInput(fmt::format("--value-range takes two numbers LO,HI (got {})",
+                                     o.value_range.size()));
+    }
+    write_options.png_range = {o.value_range[0], o.value_range[1]};
+  }
+  std::vector<Field> fields(reference::kAllFields.begin(), reference::kAllFields.end());
+  if (png) fields = {Field::height, Field::disp_x, Field::disp_y};
 
   const auto start = std::chrono::steady_clock::now();
   impls::SynthesizerOptions options;
@@ -213,20 +232,22 @@ int run_synth(const SynthOptions& o) {
   }
   std::vector<fs::path> files;
   for (int f = 0; f < ocean.frames; ++f) {
-    const reference::FieldFrame frame = synthesizer.frame(ocean.time(f));
+    reference::FieldFrame frame = synthesizer.frame(ocean.time(f));
+    const auto& j = frame.fields.at(Field::jacobian);
+    const double min_j = *std::min_element(j.begin(), j.end());
+    for (Field field : reference::kAllFields) {
+      if (std::find(fields.begin(), fields.end(), field) == fields.end()) frame.fields.erase(field);
+    }
     const auto written = validation::write_frame(out, ocean.grid, frame, f, write_options);
     files.insert(files.end(), written.begin(), written.end());
     if (!quiet) {
       const auto& h = frame.fields.at(Field::height);
-      const auto& j = frame.fields.at(Field::jacobian);
-      const double min_j = *std::min_element(j.begin(), j.end());
       fmt::print("frame {:4d}  t = {:g} s  rms h = {:.4g} m (4σ = {:.4g} m)  min J = {:.4g}  "
                  "→ {}{}\n",
                  f, ocean.time(f), rms(h), 4 * rms(h), min_j, written.front().string(),
                  written.size() > 1 ? fmt::format(" (+{} files)", written.size() - 1) : "");
     }
   }
-  std::vector<Field> fields(reference::kAllFields.begin(), reference::kAllFields.end());
   c.input = validation::frame_input_spec(fields, write_options);
   c.directory = out;
   const fs::path case_path = out / "case.toml";
@@ -308,7 +329,11 @@ Action add_synth_command(CLI::App& app) {
   app.add_option("--precision", o->precision, "synthesis precision (default fp32)")
       ->check(CLI::IsMember({"fp32", "fp64"}));
   app.add_option("--format", o->format, "frame files (default exr)")
-      ->check(CLI::IsMember({"exr", "npy", "tiff"}));
+      ->check(CLI::IsMember({"exr", "npy", "tiff", "png"}));
+  app.add_option("--value-range", o->value_range,
+                 "png: the values pixel 0 and pixel 65535 stand for, LO,HI [m]; a value outside "
+                 "is an error, never clipped")
+      ->delimiter(',');
   app.add_option("--out", o->out, "output directory (created if missing)")->required();
   app.add_option("--json", o->json, "write JSON to FILE, or - for standard output");
   app.footer(
@@ -317,7 +342,7 @@ Action add_synth_command(CLI::App& app) {
       "--spreading the spreading model, a parameter flag sets one parameter). A spectrum other "
       "than phillips with no spreading model gets cos2s with s = 10. Writes DIR/frame_0000.exr "
       "(channels h sx sy dx dy J), or frame_0000_h.npy … (fp64 → float64 with --format npy), or "
-      ".tif, and DIR/case.toml, whose [input] reads them back. JSON: {case, description, impl, "
+      ".tif, or 16-bit .png with height, disp_x, disp_y as R, G, B (--value-range), and DIR/case.toml, whose [input] reads them back. JSON: {case, description, impl, "
       "precision, format, n, frames, files, seconds}.");
   return [o] { return run_synth(*o); };
 }

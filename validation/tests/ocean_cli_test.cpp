@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
+#include <map>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -132,6 +135,39 @@ INSTANTIATE_TEST_SUITE_P(Synth, SynthFormats,
                                            SynthFormat{"exr", "fp64"}),
                          [](const auto& info) { return info.param.format + "_" + info.param.precision; });
 
+// 16-bit PNG: height, disp_x, disp_y as R, G, B through --value-range, read back within half a
+// quantization step of the synthesizer's own frames, and passed by the gate.
+TEST_F(OceanCli, SynthWritesSixteenBitPngThatTheGatePasses) {
+  const CliRun run = swell("synth --model jonswap --hs 2.5 --tp 7 --impl fftw --n 64 --length 300 "
+                           "--frames 4 --dt 0.5 --seed 5 --format png --value-range=-4,4 --out " +
+                           path("png"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_TRUE(fs::exists(dir_ / "png" / "frame_0003.png"));
+  const auto c = swell::validation::read_case_file(dir_ / "png" / "case.toml");
+  EXPECT_EQ(c.input.channels, (std::map<Field, std::string>{
+                                  {Field::height, "R"}, {Field::disp_x, "G"}, {Field::disp_y, "B"}}));
+  EXPECT_EQ(c.input.value_ranges.at(Field::disp_y), (swell::validation::IntegerRange{-4.0, 4.0}));
+  const auto read = swell::validation::read_frames(c);
+  swell::impls::SynthesizerOptions options;
+  options.backend = "fftw";
+  options.precision = swell::impls::Precision::f32;  // synth's default
+  const FrameSequence want = swell::impls::Synthesizer(c.ocean, options).frames();
+  // Half a quantization step, plus the pixel's pass through float as p/65535 (OpenImageIO's
+  // normalized value, 2⁻²⁴ relative) scaled by the range's width.
+  const double bound = 0.5 * 8.0 / 65535 + 8.0 * 0x1p-24;
+  for (std::size_t f = 0; f < want.frames.size(); ++f) {
+    ASSERT_EQ(read.frames[f].fields.size(), 3u);
+    for (const auto& [field, got] : read.frames[f].fields) {
+      const auto& values = want.frames[f].fields.at(field);
+      double worst = 0;
+      for (std::size_t k = 0; k < values.size(); ++k) worst = std::max(worst, std::abs(got[k] - values[k]));
+      EXPECT_LE(worst, bound) << swell::reference::field_name(field) << " frame " << f;
+    }
+  }
+  const CliRun gate = swell("gate --case " + path("png/case.toml"));
+  EXPECT_EQ(gate.exit_code, 0) << gate.output;
+}
+
 TEST_F(OceanCli, SynthFromACaseFileWithOverrides) {
   {
     std::ofstream(path("phillips.toml")) << R"([grid]
@@ -252,6 +288,11 @@ TEST_F(OceanCli, SynthBadInputExitsTwoNamingTheProblem) {
       {jonswap + grid + "--seed -1", {"--seed", "-1"}},
       {jonswap + grid + "--format bmp", {"--format", "bmp"}},
       {jonswap + grid + "--precision fp16", {"--precision", "fp16"}},
+      {jonswap + grid + "--format png", {"--format png needs --value-range"}},
+      {jonswap + grid + "--value-range=-4,4", {"--value-range applies to --format png only"}},
+      {jonswap + grid + "--format png --value-range=-4,4,5", {"--value-range", "two numbers"}},
+      {jonswap + grid + "--format png --value-range=4,-4", {"low < high"}},
+      {jonswap + grid + "--format png --value-range=-0.01,0.01", {"frame_0000.png", "outside the PNG value range"}},
       {"--model jonswap --hs -1 --tp 8 " + grid, {"hs", "-1"}},
       {"--case " + path("missing.toml"), {"missing.toml", "no such case file"}},
       {"--case " + path("bad.toml"), {"bad.toml:2:", "[grid] n"}},
