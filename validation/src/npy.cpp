@@ -4,6 +4,7 @@
 #include <array>
 #include <cerrno>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <istream>
 #include <limits>
@@ -11,6 +12,7 @@
 #include <string_view>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 namespace swell::validation {
 namespace {
@@ -395,6 +397,36 @@ std::string shape_string(const std::vector<std::size_t>& shape) {
   return out + ")";
 }
 
+namespace {
+
+// A Fortran-ordered array (first axis fastest: what np.fft.ifft2 returns and np.save writes as
+// is) rearranged into C order (last axis fastest), which NpyArray holds: the element at C
+// index (i0, …, ik) comes from Fortran offset i0 + d0·(i1 + d1·(i2 + …)).
+void to_c_order(NpyArray& array) {
+  const std::size_t rank = array.shape.size();
+  if (rank < 2 || array.elements() == 0) return;  // one order for rank 0 and 1
+  const std::size_t item = array.itemsize();
+  std::vector<std::size_t> fortran_stride(rank, 1);
+  for (std::size_t d = 1; d < rank; ++d) fortran_stride[d] = fortran_stride[d - 1] * array.shape[d - 1];
+  std::vector<unsigned char> out(array.data.size());
+  std::vector<std::size_t> index(rank, 0);
+  std::size_t from = 0;  // Fortran offset of `index`
+  for (std::size_t to = 0; to < array.elements(); ++to) {
+    std::memcpy(out.data() + to * item, array.data.data() + from * item, item);
+    for (std::size_t d = rank; d-- > 0;) {  // next C index: the last axis moves fastest
+      if (++index[d] < array.shape[d]) {
+        from += fortran_stride[d];
+        break;
+      }
+      from -= (array.shape[d] - 1) * fortran_stride[d];
+      index[d] = 0;
+    }
+  }
+  array.data = std::move(out);
+}
+
+}  // namespace
+
 std::size_t NpyArray::elements() const {
   std::size_t n = 1;
   for (std::size_t d : shape) {
@@ -510,10 +542,6 @@ NpyArray read_npy(std::istream& file, const fs::path& path) {
   if (fortran_order->type != Literal::Type::boolean) {
     fail(path, "'fortran_order' must be True or False, got " + describe(*fortran_order));
   }
-  if (fortran_order->value) {
-    fail(path, "fortran_order is True: Fortran-ordered (column-major) arrays are not supported; "
-               "save a C-ordered array (numpy: np.ascontiguousarray(a))");
-  }
 
   NpyArray array;
   array.dtype = dtype_from_descr(path, *descr);
@@ -542,6 +570,7 @@ NpyArray read_npy(std::istream& file, const fs::path& path) {
   }
   array.data.resize(expected);
   read_exact(array.data.data(), expected);
+  if (fortran_order->value) to_c_order(array);
   return array;
 }
 

@@ -8,7 +8,8 @@
 //   data:   the elements in C order, raw little-endian bytes
 //
 // Supported element types are the four the transforms use: '<f4', '<f8', '<c8', '<c16'.
-// Anything else — big-endian data, Fortran order, other dtypes, malformed or truncated files —
+// Fortran-ordered files (fortran_order: True) are read and rearranged into C order; swell writes
+// C order. Anything else — big-endian data, other dtypes, malformed or truncated files —
 // throws swell::InvalidInput whose message starts with the file name and names the problem.
 // Reading is bounds-checked throughout: a corrupt header never makes the reader allocate or read
 // more than the file holds.
