@@ -116,7 +116,7 @@ Action add_gate_command(CLI::App& app) {
                  "threads for decoding and transforms (default 0: every hardware thread)");
   app.add_flag("--quiet", o->quiet, "no progress messages on standard error");
   app.footer(
-      "Reads the frames (EXR, TIFF, .npy, .raw) and runs every check the fields allow: "
+      "Reads the frames (EXR, TIFF, PNG, .npy, .raw) and runs every check the fields allow: "
       "hermitian, parseval, energy (not with scale = \"free\"), spectrum, moments, dispersion "
       "(≥ 3 frames), direction (≥ 2 frames), statistics, derived fields (when slopes, "
       "displacements or the Jacobian are given). A right engine fails with probability ≤ α: "

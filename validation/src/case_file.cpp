@@ -527,9 +527,9 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
   } catch (const InvalidInput& e) {
     report.fail(e.what());
   } catch (const NumericalError& e) {
-    // validate() builds the spectrum, and parameters far outside any sea (tp = 1e60 s) make
-    // its normalization fail numerically: for a case file that is bad input, not a failed
-    // check (found by validation/fuzz/case_file_fuzzer).
+    // validate() builds the spectrum and the spreading. The model factory already turns a
+    // spectrum outside any sea (tp = 1e60 s, found by validation/fuzz/case_file_fuzzer) into
+    // InvalidInput; any other quadrature that fails on the case's values is bad input too.
     report.fail(fmt::format("the case's spectrum cannot be evaluated with these parameters: {}",
                             e.what()));
   }

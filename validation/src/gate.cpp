@@ -8,11 +8,9 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <exception>
-#include <future>
 #include <thread>
 
 #include "swell/reference/errors.hpp"

@@ -19,7 +19,6 @@
 
 namespace {
 
-using swell::reference::Field;
 using swell::reference::Grid;
 using swell::reference::OceanCase;
 using swell::test::EngineBug;
@@ -232,13 +231,7 @@ TEST(GateCalibration, SixteenBitPngFalseAlarmRateOverTwoHundredSeeds) {
     OceanCase c = base;
     c.seed = 600000 + s;
     auto frames = swell::impls::Synthesizer(c, {"fftw", swell::impls::Precision::f32}).frames();
-    double largest = 0;
-    for (auto& frame : frames.frames) {
-      for (Field dropped : {Field::slope_x, Field::slope_y, Field::jacobian}) frame.fields.erase(dropped);
-      for (const auto& [field, values] : frame.fields) {
-        for (double v : values) largest = std::max(largest, std::abs(v));
-      }
-    }
+    const double largest = swell::test::keep_rgb_fields(frames);
     write.png_range = {-1.05 * largest, 1.05 * largest};
     fs::remove_all(directory);
     CaseFile case_file = as_case_file(c);

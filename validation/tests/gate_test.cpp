@@ -535,14 +535,7 @@ TEST_F(GateFiles, PngFramesAreJudgedThroughTheirValueRange) {
     SCOPED_TRACE(fmt::format("{} bits, {}", run.bits, right ? "right" : "energy doubled"));
     const OceanCase c = small_case(6);
     auto frames = swell::test::render_surface(c, run.bug);
-    double largest = 0;
-    for (auto& frame : frames.frames) {
-      // R, G, B: height and the displacements.
-      for (Field dropped : {Field::slope_x, Field::slope_y, Field::jacobian}) frame.fields.erase(dropped);
-      for (const auto& [field, values] : frame.fields) {
-        for (double v : values) largest = std::max(largest, std::abs(v));
-      }
-    }
+    const double largest = swell::test::keep_rgb_fields(frames);
     swell::validation::FrameWriteOptions write;
     write.format = FrameFormat::png;
     write.png_bits = run.bits;

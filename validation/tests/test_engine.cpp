@@ -368,4 +368,15 @@ reference::FrameSequence render_surface(const OceanCase& ocean_case, EngineBug b
   return sequence;
 }
 
+double keep_rgb_fields(reference::FrameSequence& frames) {
+  double largest = 0;
+  for (auto& frame : frames.frames) {
+    for (Field dropped : {Field::slope_x, Field::slope_y, Field::jacobian}) frame.fields.erase(dropped);
+    for (const auto& [field, values] : frame.fields) {
+      for (double v : values) largest = std::max(largest, std::abs(v));
+    }
+  }
+  return largest;
+}
+
 }  // namespace swell::test

@@ -107,4 +107,8 @@ reference::FrameSequence render_surface(const reference::OceanCase& ocean_case,
                                         EngineBug bug = EngineBug::none,
                                         EngineOptions options = {});
 
+// Keeps what an RGB heightmap holds — height, disp_x, disp_y (PNG channels R, G, B) — and
+// returns the largest |value| among them, to size a PNG value range from.
+double keep_rgb_fields(reference::FrameSequence& frames);
+
 }  // namespace swell::test
