@@ -18,6 +18,7 @@
 
 #include "commands.hpp"
 #include "swell/reference/errors.hpp"
+#include "swell/reference/sampling_validity.hpp"
 #include "swell/validation/case_file.hpp"
 #include "swell/validation/frame_io.hpp"
 #include "swell/validation/jonswap_fit.hpp"
@@ -70,6 +71,13 @@ int run_fit(const FitOptions& o) {
   const auto& ocean = case_file.ocean;
   // Bad case before reading any frame: the spectrum must be in the family.
   const auto truth = validation::case_jonswap_parameters(ocean);
+  // The validity rule every command shares, before any frame is read: per sample and
+  // realization, the frames' height (8 bytes) and its periodogram (8), and the fit's model and
+  // its derivatives (8 per parameter, 5 at most).
+  const double samples = double(ocean.grid.nx) * double(ocean.grid.ny);
+  const double bytes = samples * (16.0 * double(o.inputs.size()) * ocean.frames + 48);
+  reference::require_valid_sampling(ocean, reference::kFloat64, std::uint64_t(std::min(bytes, 1.8e19)),
+                                    "swell fit");
   std::vector<reference::FrameSequence> realizations;
   for (const auto& input : o.inputs) realizations.push_back(read_realization(input, case_file));
   validation::JonswapFitOptions options;

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <fstream>
 #include <iostream>
+#include <new>
 
 #include "commands.hpp"
 #include "swell/reference/errors.hpp"
@@ -69,6 +70,14 @@ int main(int argc, char** argv) {
   } catch (const swell::NumericalError& e) {
     std::cerr << "swell: numerical failure: " << e.what() << "\n";
     return 1;
+  } catch (const swell::InternalError& e) {
+    std::cerr << "swell: internal error (a bug in swell; please report it with this command "
+                 "line): " << e.what() << "\n";
+    return 3;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "swell: error: out of memory: the machine could not give swell the memory this "
+                 "command needs (a smaller grid, fewer frames or fewer threads need less)\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "swell: error: " << e.what() << "\n";
     return 2;

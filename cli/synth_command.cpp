@@ -26,6 +26,7 @@
 #include "swell/impls/synthesizer.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/model_factory.hpp"
+#include "swell/reference/sampling_validity.hpp"
 #include "swell/validation/case_file.hpp"
 #include "swell/validation/frame_io.hpp"
 
@@ -213,6 +214,20 @@ int run_synth(const SynthOptions& o) {
   }
   std::vector<Field> fields(reference::kAllFields.begin(), reference::kAllFields.end());
   if (png) fields = {Field::height, Field::disp_x, Field::disp_y};
+
+  // The validity rule (reference/sampling_validity.hpp) in the narrower of the synthesis
+  // precision and what the files store (EXR, TIFF and PNG hold float32 or less), with the
+  // memory a synthesizer and the writer need.
+  const bool stores_fp64 = write_options.float64;
+  const auto& numbers = precision == impls::Precision::f64 && stores_fp64 ? reference::kFloat64
+                                                                         : reference::kFloat32;
+  const double samples = double(ocean.grid.nx) * double(ocean.grid.ny);
+  const double writer_bytes = samples * 6 * (stores_fp64 ? 8 : 4);
+  reference::require_valid_sampling(
+      ocean, numbers,
+      impls::Synthesizer::bytes_needed(ocean.grid, precision) +
+          std::uint64_t(std::min(writer_bytes, 1e18)),
+      "swell synth");
 
   const auto start = std::chrono::steady_clock::now();
   impls::SynthesizerOptions options;

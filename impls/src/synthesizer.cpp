@@ -10,7 +10,10 @@
 #include <type_traits>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "swell/reference/errors.hpp"
+#include "swell/reference/phase.hpp"
 #include "swell/reference/wave_noise.hpp"
 
 namespace swell::impls {
@@ -59,18 +62,15 @@ std::complex<double> initial_amplitude(const OceanCase& ocean_case, int n, int m
 
 namespace {
 
-// sin x and cos x to about 1 ulp for |x| ≤ kPolynomialPhaseLimit, in plain arithmetic that the
-// compiler vectorizes: glibc's sincos is a scalar call per phase (28% of a 1024² fp32 frame
-// before this, docs/synthesis.md); glibc declares its vector variants (libmvec) only under
-// -ffast-math, and their scalar loop tails would round differently from the vector body.
-// Cody–Waite reduction x = q·π/2 + r with π/2 split as p1 + p2 + p3 (fdlibm's pio2_1, pio2_2,
-// pio2_2t; p1 and p2 have 33 significant bits, so q·p1 and q·p2 are exact for |q| < 2²⁰ and
-// x − q·p1 is exact by Sterbenz's lemma), then fdlibm's __kernel_sin and __kernel_cos minimax
-// polynomials on |r| ≤ π/4. The reduced r is accurate to about 1e-16 rad: no worse than ωt
-// itself, which is rounded to double before any of this. Beyond the limit (ω t > 10⁶ rad: about
-// 30 hours for the fastest wave of a 2048² grid over 1 km) frames fall back to std::sin/cos.
-constexpr double kPolynomialPhaseLimit = 1e6;  // rad; |q| < 6.4e5 < 2²⁰
-
+// sin x and cos x to about 1 ulp for the reduced phases |x| ≤ π + 2⁻⁴ of
+// reference::reduced_phase, in plain arithmetic that the compiler vectorizes: glibc's sincos is
+// a scalar call per phase (28% of a 1024² fp32 frame before this, docs/synthesis.md); glibc
+// declares its vector variants (libmvec) only under -ffast-math, and their scalar loop tails
+// would round differently from the vector body. Cody–Waite reduction x = q·π/2 + r with π/2
+// split as p1 + p2 + p3 (fdlibm's pio2_1, pio2_2, pio2_2t; q·p1 and q·p2 are exact for small q
+// and x − q·p1 is exact by Sterbenz's lemma), then fdlibm's __kernel_sin and __kernel_cos
+// minimax polynomials on |r| ≤ π/4. The large part of ωt has already been taken out exactly by
+// reduced_phase (reference/phase.hpp), so no phase of any valid case falls back to std::sin.
 [[gnu::always_inline]] inline void sin_cos(double x, double& sin_x, double& cos_x) {
   constexpr double two_over_pi = 6.36619772367581382433e-01;
   constexpr double p1 = 1.57079632673412561417e+00;
@@ -135,7 +135,6 @@ struct RowTask {
   int width = 0;  // nx/2 + 1
   int nx = 0;
   bool pairs = false;
-  bool polynomial = true;  // sin_cos, or std::sin/std::cos beyond its phase limit
   double t = 0;
   const double* omega = nullptr;  // [width]
   const Real *a_re = nullptr, *a_im = nullptr, *b_re = nullptr, *b_im = nullptr;
@@ -193,15 +192,8 @@ template <typename Real>
   double* __restrict s = task.sin_phase;
   const double* __restrict omega = task.omega;
   const double t = task.t;
-  if (task.polynomial) {
 #pragma omp simd
-    for (int i = 0; i < width; ++i) sin_cos(omega[i] * t, s[i], c[i]);
-  } else {
-    for (int i = 0; i < width; ++i) {
-      c[i] = std::cos(omega[i] * t);
-      s[i] = std::sin(omega[i] * t);
-    }
-  }
+  for (int i = 0; i < width; ++i) sin_cos(reference::reduced_phase(omega[i], t), s[i], c[i]);
   const Real* __restrict a_re = task.a_re;
   const Real* __restrict a_im = task.a_im;
   const Real* __restrict b_re = task.b_re;
@@ -269,7 +261,7 @@ struct UnpackTask {
 };
 
 template <typename Real>
-[[gnu::always_inline]] inline void unpack_body(const UnpackTask<Real>& task) {
+[[gnu::always_inline]] inline Real unpack_body(const UnpackTask<Real>& task) {
   const std::size_t n = task.count;
   Real* __restrict h = task.fields;
   Real* __restrict sx = h + n;
@@ -278,12 +270,16 @@ template <typename Real>
   Real* __restrict dy = h + 4 * n;
   Real* __restrict jacobian = h + 5 * n;
   const Real* __restrict d = task.data;
+  // The synthesizer checks its own output (a non-finite value is a bug, never a written file):
+  // x·0 is 0 for finite x and NaN for ±inf or NaN, so the sum is finite iff every value is.
+  // Folded into the loop that writes the values, it costs a multiply-add per value.
+  Real probe = 0;
   if (task.pairs) {  // (h, ∂h/∂x), (∂h/∂y, λDx), (λDy, λ∂Dx/∂x), (λ∂Dy/∂y, λ∂Dx/∂y)
     const Real* __restrict p0 = d;
     const Real* __restrict p1 = d + 2 * n;
     const Real* __restrict p2 = d + 4 * n;
     const Real* __restrict p3 = d + 6 * n;
-#pragma omp simd
+#pragma omp simd reduction(+ : probe)
     for (std::size_t p = task.begin; p < task.end; ++p) {
       h[p] = p0[2 * p];
       sx[p] = p0[2 * p + 1];
@@ -291,6 +287,8 @@ template <typename Real>
       dx[p] = p1[2 * p + 1];
       dy[p] = p2[2 * p];
       jacobian[p] = (Real(1) + p2[2 * p + 1]) * (Real(1) + p3[2 * p]) - p3[2 * p + 1] * p3[2 * p + 1];
+      probe += Real(0) * h[p] + Real(0) * sx[p] + Real(0) * sy[p] + Real(0) * dx[p] +
+               Real(0) * dy[p] + Real(0) * jacobian[p];
     }
   } else {
     const std::size_t bytes = (task.end - task.begin) * sizeof(Real);
@@ -298,15 +296,18 @@ template <typename Real>
     const Real* __restrict dxx = d + 5 * n;
     const Real* __restrict dyy = d + 6 * n;
     const Real* __restrict dxy = d + 7 * n;
-#pragma omp simd
+#pragma omp simd reduction(+ : probe)
     for (std::size_t p = task.begin; p < task.end; ++p) {
       jacobian[p] = (Real(1) + dxx[p]) * (Real(1) + dyy[p]) - dxy[p] * dxy[p];
+      probe += Real(0) * h[p] + Real(0) * sx[p] + Real(0) * sy[p] + Real(0) * dx[p] +
+               Real(0) * dy[p] + Real(0) * jacobian[p];
     }
   }
+  return probe;
 }
 
-SWELL_SIMD_CLONES void unpack_range(const UnpackTask<float>& task) { unpack_body(task); }
-SWELL_SIMD_CLONES void unpack_range(const UnpackTask<double>& task) { unpack_body(task); }
+SWELL_SIMD_CLONES float unpack_range(const UnpackTask<float>& task) { return unpack_body(task); }
+SWELL_SIMD_CLONES double unpack_range(const UnpackTask<double>& task) { return unpack_body(task); }
 
 // Packing::automatic. Frame CPU time, complex_pairs / real, ms (docs/synthesis.md: medians
 // of 5 in one run of bench/frame_bench.cpp, 2026-11-22, 2-core AMD EPYC VM, one thread):
@@ -362,7 +363,8 @@ struct Synthesizer::State {
   template <typename Real>
   void assemble(double t) const;
   template <typename Real>
-  void unpack(std::byte* fields) const;
+  bool unpack(std::byte* fields) const;  // false when some value is not finite
+  std::string describe_non_finite(double t, std::span<const std::byte> fields) const;
 };
 
 Synthesizer::Synthesizer(OceanCase ocean_case, SynthesizerOptions options)
@@ -445,6 +447,29 @@ void Synthesizer::State::fill_waves(Waves<Real>& waves) {
   for (double w : omega) max_omega = std::max(max_omega, std::abs(w));
 }
 
+// The message of a frame with a non-finite value: which field, where, and the case — a case
+// that passed its validity rule (reference/sampling_validity.hpp) never makes one.
+std::string Synthesizer::State::describe_non_finite(double t,
+                                                    std::span<const std::byte> fields) const {
+  const State& s = *this;
+  const std::size_t count = std::size_t(s.nx) * s.ny;
+  const bool f32 = s.options.precision == Precision::f32;
+  for (std::size_t f = 0; f < reference::kAllFields.size(); ++f) {
+    for (std::size_t p = 0; p < count; ++p) {
+      const std::size_t at = f * count + p;
+      const double v = f32 ? double(reinterpret_cast<const float*>(fields.data())[at])
+                           : reinterpret_cast<const double*>(fields.data())[at];
+      if (std::isfinite(v)) continue;
+      return fmt::format("the synthesizer made {} = {} at (i, j) = ({}, {}), t = {:g} s, {} {}, "
+                         "for the case {}; the frame is not written",
+                         reference::field_name(reference::kAllFields[f]), v, p % s.nx, p / s.nx,
+                         t, s.backend->name(), to_string(s.options.precision),
+                         s.ocean_case.describe());
+    }
+  }
+  return "the synthesizer's output check found a non-finite value it cannot locate";
+}
+
 Synthesizer::~Synthesizer() = default;
 
 const OceanCase& Synthesizer::ocean_case() const { return state_->ocean_case; }
@@ -453,6 +478,17 @@ Packing Synthesizer::packing() const { return state_->packing; }
 
 std::vector<TransformSpec> Synthesizer::transforms_per_frame() const {
   return {state_->plan->spec()};
+}
+
+std::uint64_t Synthesizer::bytes_needed(const reference::Grid& grid, Precision precision) {
+  // Per sample, in reals p of the precision: the four packed spectra (8p) and, out of place,
+  // their transforms (8p); the frame (6p); the half spectrum's waves (5p/2) and ω (4 bytes);
+  // the frame converted to double (48 bytes). Counted in double: a grid of 2²⁰ × 2²⁰ overflows
+  // nothing here.
+  const double p = double(real_size(precision));
+  const double per_sample = 24.5 * p + 4 + 48;
+  const double bytes = double(grid.nx) * double(grid.ny) * per_sample;
+  return bytes >= 1.8e19 ? std::uint64_t(1.8e19) : std::uint64_t(bytes);
 }
 
 std::size_t Synthesizer::frame_bytes() const {
@@ -471,7 +507,6 @@ void Synthesizer::State::assemble(double t) const {
   const auto& kxs = kx<Real>();
   const auto& kys = ky<Real>();
   const bool pairs = packing == Packing::complex_pairs;
-  const bool polynomial = max_omega * std::abs(t) <= kPolynomialPhaseLimit;
 #pragma omp parallel num_threads(options.threads)
   {
     std::vector<double> phase(2 * std::size_t(half_columns));
@@ -480,7 +515,6 @@ void Synthesizer::State::assemble(double t) const {
     task.width = half_columns;
     task.nx = nx;
     task.pairs = pairs;
-    task.polynomial = polynomial;
     task.t = t;
     task.kx = kxs.data();
     task.plane = plane;
@@ -508,7 +542,7 @@ void Synthesizer::State::assemble(double t) const {
 }
 
 template <typename Real>
-void Synthesizer::State::unpack(std::byte* fields) const {
+bool Synthesizer::State::unpack(std::byte* fields) const {
   const std::size_t count = std::size_t(nx) * ny;
   UnpackTask<Real> task;
   task.pairs = packing == Packing::complex_pairs;
@@ -518,12 +552,15 @@ void Synthesizer::State::unpack(std::byte* fields) const {
   // Blocks of whole rows, a few per thread.
   const std::size_t block = std::size_t(nx) * std::max(1, 4096 / nx);
   const std::ptrdiff_t blocks = std::ptrdiff_t((count + block - 1) / block);
-#pragma omp parallel for num_threads(options.threads) schedule(static) firstprivate(task)
+  double probe = 0;
+#pragma omp parallel for num_threads(options.threads) schedule(static) firstprivate(task) \
+    reduction(+ : probe)
   for (std::ptrdiff_t b = 0; b < blocks; ++b) {
     task.begin = std::size_t(b) * block;
     task.end = std::min(count, task.begin + block);
-    unpack_range(task);
+    probe += double(unpack_range(task));
   }
+  return std::isfinite(probe);
 }
 
 void Synthesizer::evaluate(double t, std::span<std::byte> fields) const {
@@ -533,10 +570,17 @@ void Synthesizer::evaluate(double t, std::span<std::byte> fields) const {
                        " bytes for a frame of " + std::to_string(frame_bytes()));
   }
   require(std::isfinite(t), "frame time", "finite (s)", t);
+  if (s.max_omega * std::abs(t) > reference::kLargestPhase) {
+    throw InvalidInput(fmt::format(
+        "frame time {:g} s: the fastest wave's phase ω t = {:.3g} rad exceeds the {:.3g} rad a "
+        "phase can carry to double precision (reference/phase.hpp); ω ≤ {:.4g} rad/s on this grid",
+        t, s.max_omega * std::abs(t), reference::kLargestPhase, s.max_omega));
+  }
   const bool f32 = s.options.precision == Precision::f32;
   if (f32) s.assemble<float>(t); else s.assemble<double>(t);
   s.plan->execute(*s.spectra, s.transformed());
-  if (f32) s.unpack<float>(fields.data()); else s.unpack<double>(fields.data());
+  const bool finite = f32 ? s.unpack<float>(fields.data()) : s.unpack<double>(fields.data());
+  if (!finite) throw InternalError(s.describe_non_finite(t, fields));
 }
 
 reference::FieldFrame Synthesizer::frame(double t) const {

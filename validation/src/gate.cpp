@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "swell/reference/errors.hpp"
+#include "swell/reference/sampling_validity.hpp"
 #include "swell/validation/frame_io.hpp"
 #include "swell/validation/ocean_checks.hpp"
 #include "swell/validation/report.hpp"
@@ -361,6 +362,16 @@ GateReport run_gate(const std::filesystem::path& case_path, const GateOptions& o
   const auto start = Clock::now();
   const int threads = resolved_threads(options.threads);
   const CaseFile case_file = read_case_file(case_path);
+  // Memory first, before anything of the grid's size is read: per sample, every frame's height
+  // (8 bytes) and its two complex waves in the dispersion fit (16), the two end frames' six
+  // fields (96), the analysis' spectra and expected powers (64), and one frame of float
+  // channels being decoded per reading thread (24).
+  const auto& grid = case_file.ocean.grid;
+  const double per_sample = 24.0 * case_file.ocean.frames + 96 + 64 + 24.0 * threads;
+  const double bytes = double(grid.nx) * double(grid.ny) * per_sample;
+  reference::require_memory(std::uint64_t(std::min(bytes, 1.8e19)), "swell gate",
+                            fmt::format("{} frame{} of {}×{}", case_file.ocean.frames,
+                                        case_file.ocean.frames == 1 ? "" : "s", grid.nx, grid.ny));
   // Frames are read on OpenImageIO's "threads" (read_frames reads frames in parallel), and
   // OpenEXR decompresses a file's blocks on its own pool.
   OIIO::attribute("threads", threads);

@@ -14,6 +14,8 @@
 
 #include "swell/impls/transform.hpp"
 #include "swell/reference/errors.hpp"
+#include "swell/reference/phase.hpp"
+#include "swell/reference/sampling_validity.hpp"
 #include "swell/validation/periodogram.hpp"
 #include "swell/validation/statistics.hpp"
 
@@ -98,7 +100,7 @@ bool fit_two_waves(double omega, const std::vector<double>& times, const std::ve
   phases.resize(times.size());
   Complex s = 0, r1 = 0, r2 = 0;
   for (std::size_t f = 0; f < times.size(); ++f) {
-    const Complex e = phases[f] = std::polar(1.0, -omega * times[f]);
+    const Complex e = phases[f] = std::polar(1.0, -reference::reduced_phase(omega, times[f]));
     s += std::conj(e) * std::conj(e);
     r1 += std::conj(e) * y[f];
     r2 += e * y[f];
@@ -142,6 +144,12 @@ class Analysis {
     const auto spectrum = c_.directional_spectrum();
     tau_ = expected_travelling_power(*spectrum, grid_);
     mu_ = expected_periodogram(tau_, grid_);  // τ(k) + τ(−k): Ψ evaluated once
+    // The validity rule every command shares (reference/sampling_validity.hpp), in the number
+    // format the frames were stored in: float32 (EXR, TIFF) or coarser (PNG) unless they carry
+    // fp64's rounding.
+    reference::require_valid_sampling(
+        c_, frames.unit_roundoff > 2 * kFp64Roundoff ? reference::kFloat32 : reference::kFloat64, 0,
+        "", &tau_);
     spectrum0_ = field_spectrum(frames.field(0, Field::height), grid_);
     mean_square0_ = mean_square(frames.field(0, Field::height));
 
@@ -1075,13 +1083,13 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   double worst_z = 0, hs_min = 1e300, hs_max = 0;
   int worst_frame = 0;
   std::vector<Complex> first_phase;  // e^(−2iωt0) per wave, once
-  for (const Wave& w : a.half_plane()) first_phase.push_back(std::polar(1.0, -2 * w.omega * times[0]));
+  for (const Wave& w : a.half_plane()) first_phase.push_back(std::polar(1.0, -reference::reduced_phase(2 * w.omega, times[0])));
   for (std::size_t f = 1; f < times.size(); ++f) {
     const double m0 = mean_square(a.frames().field(int(f), Field::height));
     double variance = 0;
     for (std::size_t i = 0; i < a.half_plane().size(); ++i) {
       const Wave& w = a.half_plane()[i];
-      const double change = std::norm(std::polar(1.0, -2 * w.omega * times[f]) - first_phase[i]);
+      const double change = std::norm(std::polar(1.0, -reference::reduced_phase(2 * w.omega, times[f])) - first_phase[i]);
       variance += 8 * w.tau_plus * w.tau_minus * change;
     }
     variance += std::pow(16 * a.unit_roundoff() * a.log2n() * m0_first, 2);

@@ -11,6 +11,7 @@
 // complex transforms, two real fields packed per transform (a + ib), or as eight c2r transforms;
 // docs/synthesis.md records which is faster on which backend.
 #include <complex>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
@@ -58,6 +59,9 @@ class Synthesizer {
   // synthesizer's precision (float or double), in reference::kAllFields order.
   void evaluate(double t, std::span<std::byte> fields) const;
   std::size_t frame_bytes() const;  // bytes `fields` must hold
+  // About the memory a synthesizer of this grid and precision holds, with one frame converted
+  // to double (frame()): what a command checks against the machine before building one.
+  static std::uint64_t bytes_needed(const reference::Grid& grid, Precision precision);
 
   // The same, converted to double: one frame at time t, and the case's frames.
   reference::FieldFrame frame(double t) const;

@@ -3,7 +3,9 @@
 //  - InvalidInput: the caller asked for something swell cannot do (bad value, unknown name).
 //    The message names the field, the rule and the value. The CLI turns it into exit code 2.
 //  - NumericalError: a well-posed computation did not reach its stated accuracy.
-//  - A violated internal invariant is a bug: assert/abort, never an exception.
+//  - InternalError: a violated internal invariant — a bug in swell, never the caller's fault
+//    (a non-finite value from a case that passed its validity rule). The CLI prints it as a
+//    bug with exit code 3; nothing is written.
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -18,6 +20,11 @@ class InvalidInput : public std::invalid_argument {
 class NumericalError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+class InternalError : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
 };
 
 // Throws InvalidInput "<what> must be <rule> (got <value>)".
