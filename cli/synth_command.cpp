@@ -29,6 +29,7 @@
 #include "swell/reference/sampling_validity.hpp"
 #include "swell/validation/case_file.hpp"
 #include "swell/validation/frame_io.hpp"
+#include "swell/validation/ocean_checks.hpp"
 
 namespace swell::cli {
 namespace {
@@ -248,6 +249,17 @@ int run_synth(const SynthOptions& o) {
   std::vector<fs::path> files;
   for (int f = 0; f < ocean.frames; ++f) {
     reference::FieldFrame frame = synthesizer.frame(ocean.time(f));
+    if (png && f == 0) {
+      // The gate judges PNG frames by their quantization (frame_io.hpp): refuse before writing
+      // a PNG whose step would hide every wave vector from it.
+      const validation::IntegerRange range = write_options.png_range;
+      double u = 0;
+      for (Field field : fields) {
+        u = std::max(u, validation::quantization_roundoff(range, 65535.0, frame.fields.at(field)));
+      }
+      const double h_rms = rms(frame.fields.at(Field::height));
+      validation::require_judgeable_rounding(ocean, u, h_rms * h_rms);
+    }
     const auto& j = frame.fields.at(Field::jacobian);
     const double min_j = *std::min_element(j.begin(), j.end());
     for (Field field : reference::kAllFields) {

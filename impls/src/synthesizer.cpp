@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -146,6 +147,7 @@ struct RowTask {
   std::size_t plane = 0;       // Reals from one spectrum to the next
   double *cos_phase = nullptr, *sin_phase = nullptr;  // scratch [width]
   Real *h_re = nullptr, *h_im = nullptr;              // scratch [width]
+  const Real* field_scale = nullptr;  // [kRealFields] powers of two (State::field_scale)
 };
 
 // The spectra of the eight real fields at k = (kx, ky), in packing order, from h̃(k)
@@ -160,7 +162,7 @@ struct FieldSpectra {
 
 template <typename Real>
 [[gnu::always_inline]] inline FieldSpectra<Real> field_spectra(Real hr, Real hi, Real kx, Real ky,
-                                                               Real lk) {
+                                                               Real lk, const Real* scale) {
   const Real lkx = lk * kx, lky = lk * ky;
   FieldSpectra<Real> f;
   f.re[0] = hr;              f.im[0] = hi;
@@ -171,6 +173,10 @@ template <typename Real>
   f.re[5] = -lkx * kx * hr;  f.im[5] = -lkx * kx * hi;
   f.re[6] = -lky * ky * hr;  f.im[6] = -lky * ky * hi;
   f.re[7] = -lkx * ky * hr;  f.im[7] = -lkx * ky * hi;
+  for (int r = 0; r < kRealFields; ++r) {
+    f.re[r] *= scale[r];
+    f.im[r] *= scale[r];
+  }
   return f;
 }
 
@@ -217,7 +223,7 @@ template <typename Real>
     for (int i = 0; i < width; ++i) {
       Real hr, hi;
       wave(i, hr, hi);
-      const auto f = field_spectra(hr, hi, kx[i], ky, lk[i]);
+      const auto f = field_spectra(hr, hi, kx[i], ky, lk[i], task.field_scale);
       for (int r = 0; r < kRealFields; ++r) {
         out[r * plane + 2 * i] = f.re[r];
         out[r * plane + 2 * i + 1] = f.im[r];
@@ -231,7 +237,7 @@ template <typename Real>
     wave(i, hr, hi);
     h_re[i] = hr;
     h_im[i] = hi;
-    store_pairs(field_spectra(hr, hi, kx[i], ky, lk[i]), out, plane, i);
+    store_pairs(field_spectra(hr, hi, kx[i], ky, lk[i], task.field_scale), out, plane, i);
   }
   // The columns nx/2 + 1 … nx − 1 of the mirror row hold −k of columns nx − 1 … 1 here:
   // h̃(−k) = conj(h̃(k)), and λ/|k| is the same.
@@ -241,7 +247,8 @@ template <typename Real>
 #pragma omp simd
   for (int i = width; i < nx; ++i) {
     const int source = nx - i;
-    const auto f = field_spectra(h_re[source], -h_im[source], kx[i], ky_mirror, lk[source]);
+    const auto f = field_spectra(h_re[source], -h_im[source], kx[i], ky_mirror, lk[source],
+                                 task.field_scale);
     store_pairs(f, mirror, plane, i);
   }
 }
@@ -258,6 +265,7 @@ struct UnpackTask {
   std::size_t count = 0;       // samples per field
   Real* fields = nullptr;      // 6 planes of count
   std::size_t begin = 0, end = 0;
+  const Real* inverse_scale = nullptr;  // [kRealFields]: undoes State::field_scale (0: a zero field)
 };
 
 template <typename Real>
@@ -279,26 +287,33 @@ template <typename Real>
     const Real* __restrict p1 = d + 2 * n;
     const Real* __restrict p2 = d + 4 * n;
     const Real* __restrict p3 = d + 6 * n;
+    const Real* v = task.inverse_scale;
 #pragma omp simd reduction(+ : probe)
     for (std::size_t p = task.begin; p < task.end; ++p) {
-      h[p] = p0[2 * p];
-      sx[p] = p0[2 * p + 1];
-      sy[p] = p1[2 * p];
-      dx[p] = p1[2 * p + 1];
-      dy[p] = p2[2 * p];
-      jacobian[p] = (Real(1) + p2[2 * p + 1]) * (Real(1) + p3[2 * p]) - p3[2 * p + 1] * p3[2 * p + 1];
+      h[p] = p0[2 * p] * v[0];
+      sx[p] = p0[2 * p + 1] * v[1];
+      sy[p] = p1[2 * p] * v[2];
+      dx[p] = p1[2 * p + 1] * v[3];
+      dy[p] = p2[2 * p] * v[4];
+      const Real dxx = p2[2 * p + 1] * v[5], dyy = p3[2 * p] * v[6], dxy = p3[2 * p + 1] * v[7];
+      jacobian[p] = (Real(1) + dxx) * (Real(1) + dyy) - dxy * dxy;
       probe += Real(0) * h[p] + Real(0) * sx[p] + Real(0) * sy[p] + Real(0) * dx[p] +
                Real(0) * dy[p] + Real(0) * jacobian[p];
     }
   } else {
-    const std::size_t bytes = (task.end - task.begin) * sizeof(Real);
-    for (int f = 0; f < 5; ++f) std::memcpy(h + f * n + task.begin, d + f * n + task.begin, bytes);
+    const Real* v = task.inverse_scale;
     const Real* __restrict dxx = d + 5 * n;
     const Real* __restrict dyy = d + 6 * n;
     const Real* __restrict dxy = d + 7 * n;
 #pragma omp simd reduction(+ : probe)
     for (std::size_t p = task.begin; p < task.end; ++p) {
-      jacobian[p] = (Real(1) + dxx[p]) * (Real(1) + dyy[p]) - dxy[p] * dxy[p];
+      h[p] = d[p] * v[0];
+      sx[p] = d[n + p] * v[1];
+      sy[p] = d[2 * n + p] * v[2];
+      dx[p] = d[3 * n + p] * v[3];
+      dy[p] = d[4 * n + p] * v[4];
+      const Real xx = dxx[p] * v[5], yy = dyy[p] * v[6], xy = dxy[p] * v[7];
+      jacobian[p] = (Real(1) + xx) * (Real(1) + yy) - xy * xy;
       probe += Real(0) * h[p] + Real(0) * sx[p] + Real(0) * sy[p] + Real(0) * dx[p] +
                Real(0) * dy[p] + Real(0) * jacobian[p];
     }
@@ -335,6 +350,16 @@ struct Synthesizer::State {
   int spectrum_columns = 0;   // of the spectra the transforms take: nx (c2c) or nx/2 + 1 (c2r)
   std::vector<double> omega;  // per half-spectrum entry
   double max_omega = 0;
+  // Each of the eight real fields is synthesized times a power of two that brings its rms near
+  // 1, and unpack divides it out (exactly). Two fields share a complex transform, whose
+  // rounding is relative to the pair's larger field: unscaled, a patch of 0.5 m (|k| ~ 100
+  // rad/m) puts slopes 100× above heights and displacements, and the smaller field of a pair
+  // is off by 100 u; λ = 1e-18 leaves a displacement below its partner's rounding. Scaled, every
+  // field carries its own precision (found by the property test of the command line). A field
+  // that is zero by definition (λ = 0) gets inverse scale 0: its output is exactly 0, not its
+  // partner's rounding.
+  std::array<double, kRealFields> field_scale{}, inverse_scale{};
+  std::array<float, kRealFields> field_scale32{}, inverse_scale32{};
   Waves<float> waves32;       // fp32 synthesizers
   Waves<double> waves64;      // fp64 synthesizers
   std::vector<float> kx32, ky32;  // per column of a full row (FFT order), per row
@@ -349,6 +374,14 @@ struct Synthesizer::State {
   template <typename Real>
   const Waves<Real>& waves() const {
     if constexpr (std::is_same_v<Real, float>) return waves32; else return waves64;
+  }
+  template <typename Real>
+  const Real* scales(bool inverse) const {
+    if constexpr (std::is_same_v<Real, float>) {
+      return inverse ? inverse_scale32.data() : field_scale32.data();
+    } else {
+      return inverse ? inverse_scale.data() : field_scale.data();
+    }
   }
   template <typename Real>
   const std::vector<Real>& kx() const {
@@ -445,6 +478,37 @@ void Synthesizer::State::fill_waves(Waves<Real>& waves) {
     }
   }
   for (double w : omega) max_omega = std::max(max_omega, std::abs(w));
+
+  // The variance of each field (up to a common factor: half-spectrum entries stand for their
+  // mirror too), from the waves' power and the fields' multipliers (field_spectra).
+  std::array<double, kRealFields> variance{};
+  for (int j = 0; j < ny; ++j) {
+    const double ky = ky64[j];
+    for (int i = 0; i < half_columns; ++i) {
+      const std::size_t e = std::size_t(j) * half_columns + i;
+      const double power = double(waves.a_re[e]) * double(waves.a_re[e]) +
+                           double(waves.a_im[e]) * double(waves.a_im[e]) +
+                           double(waves.b_re[e]) * double(waves.b_re[e]) +
+                           double(waves.b_im[e]) * double(waves.b_im[e]);
+      if (power == 0) continue;
+      const double kx = kx64[i], lk = double(waves.lambda_over_k[e]);
+      const double multipliers[kRealFields] = {1, kx, ky, lk * kx, lk * ky,
+                                               lk * kx * kx, lk * ky * ky, lk * kx * ky};
+      for (int r = 0; r < kRealFields; ++r) variance[r] += multipliers[r] * multipliers[r] * power;
+    }
+  }
+  for (int r = 0; r < kRealFields; ++r) {
+    const double rms = std::sqrt(variance[r]);
+    if (rms > 0 && std::isfinite(rms)) {
+      field_scale[r] = std::ldexp(1.0, -std::ilogb(rms));
+      inverse_scale[r] = std::ldexp(1.0, std::ilogb(rms));
+    } else {
+      field_scale[r] = 1;
+      inverse_scale[r] = rms == 0 ? 0 : 1;
+    }
+    field_scale32[r] = float(field_scale[r]);
+    inverse_scale32[r] = float(inverse_scale[r]);
+  }
 }
 
 // The message of a frame with a non-finite value: which field, where, and the case — a case
@@ -522,6 +586,7 @@ void Synthesizer::State::assemble(double t) const {
     task.sin_phase = phase.data() + half_columns;
     task.h_re = h.data();
     task.h_im = h.data() + half_columns;
+    task.field_scale = scales<Real>(false);
 #pragma omp for schedule(static)
     for (int j = 0; j < ny; ++j) {
       const int mirror = (ny - j) % ny;
@@ -549,6 +614,7 @@ bool Synthesizer::State::unpack(std::byte* fields) const {
   task.data = static_cast<const Real*>(transformed().host_data());
   task.count = count;
   task.fields = reinterpret_cast<Real*>(fields);
+  task.inverse_scale = scales<Real>(true);
   // Blocks of whole rows, a few per thread.
   const std::size_t block = std::size_t(nx) * std::max(1, 4096 / nx);
   const std::ptrdiff_t blocks = std::ptrdiff_t((count + block - 1) / block);

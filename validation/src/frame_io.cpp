@@ -225,15 +225,6 @@ std::map<Field, int> locate_channels(const std::string& file, StoredFormat forma
 // The rounding of a field stored as integers: a uniform quantization error of step
 // q = (high − low)/levels, variance q²/12, white — as a unit roundoff u relative to the field's
 // rms (the checks' rounding budget is u² mean(v²), conventions §Tolerances), u = q/√(12 mean v²).
-double quantization_roundoff(const IntegerRange& range, double levels,
-                             const std::vector<double>& values) {
-  double sum = 0;
-  for (double v : values) sum += v * v;
-  const double rms = std::sqrt(sum / double(std::max<std::size_t>(1, values.size())));
-  const double step = (range.high - range.low) / levels;
-  return rms > 0 ? std::min(1.0, step / std::sqrt(12.0) / rms) : 1.0;
-}
-
 double read_image_frame(const fs::path& path, StoredFormat format, const Grid& grid,
                         const InputSpec& input, const std::function<bool(Field)>& keep,
                         FieldFrame& frame) {
@@ -621,6 +612,16 @@ NpyArray npy_of(const Grid& grid, const std::vector<double>& real, const std::ve
 }
 
 }  // namespace
+
+double quantization_roundoff(const IntegerRange& range, double levels,
+                             const std::vector<double>& values) {
+  double sum = 0;
+  for (double v : values) sum += v * v;
+  const double rms = std::sqrt(sum / double(std::max<std::size_t>(1, values.size())));
+  const double step = (range.high - range.low) / levels;
+  return rms > 0 ? std::min(1.0, step / std::sqrt(12.0) / rms) : 1.0;
+}
+
 
 FrameFormat frame_format_from_string(const std::string& name) {
   if (name == "exr") return FrameFormat::exr;

@@ -118,6 +118,24 @@ bool fit_two_waves(double omega, const std::vector<double>& times, const std::ve
   return true;
 }
 
+// Integer frames with a coarse quantization step (8-bit PNG, or 16-bit over a range far wider
+// than the values) come here, from the gate and from swell synth alike.
+[[noreturn]] void throw_rounding_hides_every_wave(double u, const OceanCase& c) {
+  throw InvalidInput(fmt::format(
+      "the stored values' rounding (unit roundoff {:.2g} relative to the height's rms) hides "
+      "every wave vector: none carries 10⁶ times the rounding noise, so no check can judge these "
+      "frames ({}); store floats, or 16-bit integers with a value_range close to the values' "
+      "extent",
+      u, c.describe()));
+}
+
+// The resolution floor of the analysis: a wave vector is resolved when the model puts 10⁶
+// times the rounding noise there (white over the N wave vectors: u² mean(h²)/N per k), so that
+// rounding moves its periodogram by < 10⁻⁶ relative.
+double resolution_floor(double u, double mean_square_height, std::size_t count) {
+  return 1e6 * u * u * mean_square_height / double(count);
+}
+
 class Analysis {
  public:
   Analysis(const OceanCase& ocean_case, const FrameSequence& frames,
@@ -157,10 +175,9 @@ class Analysis {
     if (!(expected_total > 0)) {
       throw InvalidInput("the case's spectrum puts no energy on this grid (" + c_.describe() + ")");
     }
-    // Rounding of the stored numbers, white over the N wave vectors: at most u² mean(h²)/N per
-    // k. A wave vector is resolved when the model puts 10⁶ times that there, so rounding moves
-    // its periodogram by < 10⁻⁶ relative — far below any sampling effect the checks test.
-    floor_ = 1e6 * u_ * u_ * mean_square0_ / double(count_);
+    // Rounding of the stored numbers moves a resolved wave vector's periodogram by < 10⁻⁶
+    // relative — far below any sampling effect the checks test.
+    floor_ = resolution_floor(u_, mean_square0_, count_);
 
     for (int j = 0; j < grid_.ny; ++j) {
       const int m = Grid::signed_index(j, grid_.ny);
@@ -209,15 +226,7 @@ class Analysis {
     if (resolved_.empty()) {
       const bool rounding_hides_all = std::any_of(
           all_half_plane_.begin(), all_half_plane_.end(), [](const Wave& w) { return w.mu > 0; });
-      if (rounding_hides_all) {
-        // Integer frames with a coarse quantization step (8-bit PNG) come here.
-        throw InvalidInput(fmt::format(
-            "the stored values' rounding (unit roundoff {:.2g} relative to the height's rms) "
-            "hides every wave vector: none carries 10⁶ times the rounding noise, so no check "
-            "can judge these frames ({}); store floats, or 16-bit integers with a value_range "
-            "close to the values' extent",
-            u_, c_.describe()));
-      }
+      if (rounding_hides_all) throw_rounding_hides_every_wave(u_, c_);  // coarse integer frames
       throw InvalidInput("no wave vector of the grid carries resolvable energy under the case's "
                          "spectrum (" + c_.describe() + ")");
     }
@@ -1191,7 +1200,13 @@ Results check_derived(const Analysis& a, OceanCheckReport& report) {
       const double scale = std::sqrt(std::max(mean_square(expected), 1e-300));
       const double error = std::sqrt(mean_square(difference)) / scale;
       const double own = field == Field::jacobian ? 1 + mean_square(expected) : mean_square(expected);
-      const double rounding = std::sqrt(u * u * (h_power * mean_m2 + own)) / scale;
+      // Rounding, in the stored numbers' unit roundoff u: of the stored height, carried into
+      // the derived field by its multiplier (h_power·mean |m|²); of the stored field itself
+      // (own); and of the engine's own inverse transform of this field, ≈ u log2 N relative in
+      // L2 (the accuracy bound of every FFT, DESIGN.md §5) — which a J made of three
+      // transformed λ∂D terms shows first (property test of the command line, issue 10).
+      const double transform = a.log2n() * a.log2n() * mean_square(expected);
+      const double rounding = std::sqrt(u * u * (h_power * mean_m2 + own + transform)) / scale;
       const double bound = 10 * rounding + 64 * kFp64Roundoff * a.log2n();
       if (error / bound >= worst_error[field] / std::max(bound_at_worst[field], 1e-300) ||
           !worst_error.count(field)) {
@@ -1238,6 +1253,15 @@ std::vector<std::string> ocean_check_names() {
   std::vector<std::string> names;
   for (const auto& [name, function] : registry()) names.push_back(name);
   return names;
+}
+
+void require_judgeable_rounding(const OceanCase& ocean_case, double unit_roundoff,
+                                double mean_square_height) {
+  const auto mu = expected_periodogram(*ocean_case.directional_spectrum(), ocean_case.grid);
+  const double floor = resolution_floor(unit_roundoff, mean_square_height, mu.size());
+  if (std::none_of(mu.begin(), mu.end(), [&](double m) { return m > 0 && m >= floor; })) {
+    throw_rounding_hides_every_wave(unit_roundoff, ocean_case);
+  }
 }
 
 OceanCheckReport run_ocean_checks(const OceanCase& ocean_case, const FrameSequence& frames,

@@ -13,8 +13,11 @@ struct Run {
   std::string output;  // stdout and stderr together
 };
 
-inline Run swell(const std::string& arguments) {
-  const std::string command = std::string(SWELL_BINARY) + " " + arguments + " 2>&1";
+// With timeout_seconds > 0 the command runs under coreutils' timeout: past it, exit code 124.
+inline Run swell(const std::string& arguments, int timeout_seconds = 0) {
+  const std::string limit =
+      timeout_seconds > 0 ? "timeout --kill-after=5 " + std::to_string(timeout_seconds) + " " : "";
+  const std::string command = limit + std::string(SWELL_BINARY) + " " + arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return {-1, "popen failed"};
   std::string output;

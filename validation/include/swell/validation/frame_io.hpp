@@ -28,6 +28,13 @@
 
 namespace swell::validation {
 
+// The unit roundoff of values stored as integers over a value range (docs/case_files.md): the
+// quantization step q = (high − low)/levels as uniform noise of rms q/√12, relative to the
+// values' rms (1 at most). The gate judges integer frames by it; swell synth refuses a PNG
+// whose quantization would hide every wave vector.
+double quantization_roundoff(const IntegerRange& range, double levels,
+                             const std::vector<double>& values);
+
 enum class FrameFormat { exr, npy, tiff, png };
 FrameFormat frame_format_from_string(const std::string& name);  // "exr" | "npy" | "tiff" | "png"
 std::string to_string(FrameFormat format);

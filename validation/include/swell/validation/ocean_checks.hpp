@@ -44,6 +44,12 @@ struct OceanCheckReport {
   double fitted_scale = 1;           // Σ I / Σ μ when free_scale, else 1
 };
 
+// Throws the InvalidInput the checks throw for frames whose rounding (unit roundoff u relative
+// to the height's rms, mean_square_height = mean h²) hides every wave vector of the case: what
+// swell synth asks before writing a PNG the gate could not judge.
+void require_judgeable_rounding(const reference::OceanCase& ocean_case, double unit_roundoff,
+                                double mean_square_height);
+
 // The names of the checks, in the order they run.
 std::vector<std::string> ocean_check_names();
 
