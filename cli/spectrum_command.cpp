@@ -149,7 +149,7 @@ Action add_spectrum_command(CLI::App& app) {
   const auto models = reference::frequency_model_names();
   app.add_option("--model", o->model, "spectrum model")
       ->required()
-      ->check(CLI::IsMember(std::set<std::string>(models.begin(), models.end())));
+      ->check(model_name_check(reference::ModelKind::spectrum));
   // One flag per parameter any model takes; each model rejects the ones it does not take.
   std::set<std::string> seen;
   for (const auto& model : models) {

@@ -148,6 +148,13 @@ validation::CaseFile build_case(const SynthOptions& o) {
   auto route = [&](const std::string& name) -> ModelSpec& {
     if (takes(ocean.spectrum.model, name)) return ocean.spectrum;
     if (takes(ocean.spreading.model, name)) return ocean.spreading;
+    if (ocean.spectrum.model == "phillips" && (name == "hs" || name == "tp")) {
+      throw InvalidInput(fmt::format(
+          "{} is not a parameter of spectrum 'phillips': Phillips is scaled by its amplitude A "
+          "(--amplitude) and shaped by its wind speed (--wind-speed), not by a sea state; for a "
+          "given Hs and Tp use --model jonswap or bretschneider",
+          flag_of(name)));
+    }
     throw InvalidInput(fmt::format(
         "{} is not a parameter of spectrum '{}' (takes {}){}", flag_of(name), ocean.spectrum.model,
         parameter_list(ocean.spectrum.model),
@@ -311,11 +318,11 @@ Action add_synth_command(CLI::App& app) {
   o->given["--case"] = app.add_option("--case", o->case_file,
                                       "case file (docs/case_files.md); flags override it");
   o->given["--model"] = app.add_option("--model", o->model, "spectrum model")
-                            ->check(CLI::IsMember(std::set<std::string>(models.begin(), models.end())));
+                            ->check(model_name_check(reference::ModelKind::spectrum));
   o->given["--spreading"] =
       app.add_option("--spreading", o->spreading,
                      "spreading model (default for non-phillips spectra: cos2s with s = 10)")
-          ->check(CLI::IsMember(std::set<std::string>(spreadings.begin(), spreadings.end())));
+          ->check(model_name_check(reference::ModelKind::spreading));
   // One flag per parameter any spectrum or spreading model takes; each goes to the model that
   // takes it. gravity, depth and wind_dir are case-wide flags below.
   std::set<std::string> seen = {"gravity", "depth", "wind_dir"};

@@ -63,7 +63,7 @@ std::complex<double> initial_amplitude(const OceanCase& ocean_case, int n, int m
 
 namespace {
 
-// sin x and cos x to about 1 ulp for the reduced phases |x| ≤ π + 2⁻⁴ of
+// sin x and cos x to about 1 ulp for the reduced phases |x| ≤ π + 2⁻² of
 // reference::reduced_phase, in plain arithmetic that the compiler vectorizes: glibc's sincos is
 // a scalar call per phase (28% of a 1024² fp32 frame before this, docs/synthesis.md); glibc
 // declares its vector variants (libmvec) only under -ffast-math, and their scalar loop tails

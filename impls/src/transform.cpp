@@ -132,8 +132,19 @@ void Backend::validate(const TransformSpec& spec) const {
     refuse("precision " + to_string(spec.precision) + " is not offered (valid: " + valid + ")");
   }
   if (!caps.any_size && (!is_power_of_two(spec.nx) || !is_power_of_two(spec.ny))) {
+    // Name the backends that would take it, so the refusal says what to do instead.
+    std::string others;
+    for (const auto& other : backend_names()) {
+      if (other == "null" || other == name()) continue;
+      try {
+        if (make_backend(other)->capabilities().any_size) others += (others.empty() ? "" : ", ") + other;
+      } catch (const std::exception&) {
+        // a backend that cannot start here is no suggestion
+      }
+    }
     refuse("sizes must be " + caps.size_rule + " (got " + std::to_string(spec.nx) + "×" +
-           std::to_string(spec.ny) + ")");
+           std::to_string(spec.ny) + ")" +
+           (others.empty() ? "" : "; for other sizes use --impl " + others));
   }
   if (spec.kind != Kind::c2c && !caps.real_transforms) refuse("real transforms are not offered");
   if (spec.kind == Kind::r2c && spec.direction != Direction::forward) refuse("r2c is forward only");

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -198,7 +199,7 @@ namespace {
 FrequencySpectrumPtr build_frequency_spectrum(const ModelSpec& spec) {
   const auto& names = frequency_model_names();
   if (std::find(names.begin(), names.end(), spec.model) == names.end()) {
-    throw InvalidInput("unknown spectrum model '" + spec.model + "'; valid: " + join(names));
+    throw InvalidInput(unknown_model_message(ModelKind::spectrum, spec.model));
   }
   const Reader r(spec, "spectrum model", model_parameters(spec.model));
   const Dispersion dispersion = make_dispersion(spec);  // validates depth and gravity
@@ -266,7 +267,7 @@ FrequencySpectrumPtr make_frequency_spectrum(const ModelSpec& spec) {
 SpreadingPtr make_spreading(const ModelSpec& spec, double omega_p) {
   const auto& names = spreading_model_names();
   if (std::find(names.begin(), names.end(), spec.model) == names.end()) {
-    throw InvalidInput("unknown spreading model '" + spec.model + "'; valid: " + join(names));
+    throw InvalidInput(unknown_model_message(ModelKind::spreading, spec.model));
   }
   const Reader r(spec, "spreading model", model_parameters(spec.model));
   if (spec.model == "cos2s") return Cos2s::constant(r.required("s", "spreading exponent"));
@@ -277,6 +278,67 @@ SpreadingPtr make_spreading(const ModelSpec& spec, double omega_p) {
   if (spec.model == "donelan-banner") return DonelanBanner::create(omega_p);
   return CosPower::create(r.required("p", "exponent of |cos θ|"),
                           r.choice("one_sided", {"no", "yes"}) == "yes");
+}
+
+namespace {
+
+// Levenshtein distance between two short names, case and '-'/'_' ignored.
+std::size_t name_distance(std::string a, std::string b) {
+  auto fold = [](std::string& s) {
+    for (auto& c : s) c = c == '_' ? '-' : char(std::tolower(static_cast<unsigned char>(c)));
+  };
+  fold(a);
+  fold(b);
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+std::string unknown_model_message(ModelKind kind, const std::string& name) {
+  const bool spectrum = kind == ModelKind::spectrum;
+  const auto valid = spectrum ? frequency_model_names() : spreading_model_names();
+  const auto other = spectrum ? spreading_model_names() : frequency_model_names();
+  const std::string what = spectrum ? "spectrum" : "spreading";
+  if (!spectrum && name == "phillips") {
+    return "'phillips' is not a spreading model: the Phillips spectrum carries its own "
+           "directionality (|k̂·ŵ|^p, its exponent p and against_wind_factor are spectrum "
+           "parameters). Set [spectrum] model = \"phillips\" (--model phillips) with its wind "
+           "direction there ([spectrum] wind_dir_deg or --wind-dir), and give no [spreading] "
+           "section (no --spreading)";
+  }
+  if (std::find(other.begin(), other.end(), name) != other.end()) {
+    return spectrum
+        ? fmt::format("'{}' is a spreading model, not a spectrum: put it in [spreading] model "
+                      "(--spreading {}) and name a frequency spectrum in [spectrum] model (one of "
+                      "{})",
+                      name, name, join(valid))
+        : fmt::format("'{}' is a spectrum, not a spreading model: put it in [spectrum] model "
+                      "(--model {}) and name a spreading in [spreading] model (one of {})",
+                      name, name, join(valid));
+  }
+  std::string nearest;
+  std::size_t best = 4;  // suggest only a close name: at most 3 edits
+  for (const auto& candidate : valid) {
+    const std::size_t d = name_distance(name, candidate);
+    if (d < best) {
+      best = d;
+      nearest = candidate;
+    }
+  }
+  return fmt::format("unknown {} model '{}'{}; valid: {}", what, name,
+                     nearest.empty() ? "" : fmt::format(" (did you mean '{}'?)", nearest),
+                     join(valid));
 }
 
 }  // namespace swell::reference

@@ -293,7 +293,10 @@ std::string model_name(const Section& section, const std::vector<std::string>& v
                        const std::string& kind) {
   const std::string model = *section.string("model");
   if (std::find(valid.begin(), valid.end(), model) == valid.end()) {
-    section.fail("model", fmt::format("unknown {} model '{}'; valid: {}", kind, model, join(valid)));
+    section.fail("model", reference::unknown_model_message(kind == "spreading"
+                                                               ? reference::ModelKind::spreading
+                                                               : reference::ModelKind::spectrum,
+                                                           model));
   }
   return model;
 }

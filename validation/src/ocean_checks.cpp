@@ -621,7 +621,8 @@ Results check_moments(const Analysis& a, OceanCheckReport& report) {
     const double var_log = exponent * exponent *
                            (cov[0][0] / (expected[0] * expected[0]) -
                             2 * cov[0][n] / (expected[0] * expected[n]) +
-                            cov[n][n] / (expected[n] * expected[n]));
+                            cov[n][n] / (expected[n] * expected[n])) +
+                           std::pow(16 * a.unit_roundoff() * a.log2n(), 2);  // rounding (one wave: 0 variance)
     const double z = std::log(t / t_expected) / std::sqrt(var_log);
     const double p = stats::normal_two_sided_p(z);
     out.push_back(statistical(fmt::format("moments.{}", name), a.subject(), t, t_expected, p, alpha,
@@ -877,29 +878,35 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
 
 // ------------------------------------------------------------------ direction
 
-// Solves the small symmetric positive definite system M x = v (Gaussian elimination).
+// dᵀ C⁺ d for a symmetric positive semi-definite C and d in C's column space, with the rank
+// of C: Gaussian elimination with diagonal pivoting (LDLᵀ), pivots at or below 1e-10 of the
+// largest diagonal are C's null space and are dropped. A few waves all along one line (a
+// narrow Phillips spectrum on a small grid) make the harmonics' covariance singular; the
+// statistic then has that many fewer degrees of freedom, not a NaN (property test, issue 10).
 template <std::size_t D>
-std::array<double, D> solve(std::array<std::array<double, D>, D> m, std::array<double, D> v) {
-  for (std::size_t c = 0; c < D; ++c) {
-    std::size_t pivot = c;
-    for (std::size_t r = c + 1; r < D; ++r) {
-      if (std::abs(m[r][c]) > std::abs(m[pivot][c])) pivot = r;
+double quadratic_form(std::array<std::array<double, D>, D> c, std::array<double, D> d, int& rank) {
+  double largest = 0;
+  for (std::size_t i = 0; i < D; ++i) largest = std::max(largest, c[i][i]);
+  double form = 0;
+  rank = 0;
+  for (std::size_t k = 0; k < D; ++k) {
+    std::size_t pivot = k;
+    for (std::size_t r = k + 1; r < D; ++r) {
+      if (c[r][r] > c[pivot][pivot]) pivot = r;
     }
-    std::swap(m[c], m[pivot]);
-    std::swap(v[c], v[pivot]);
-    for (std::size_t r = c + 1; r < D; ++r) {
-      const double factor = m[r][c] / m[c][c];
-      for (std::size_t k = c; k < D; ++k) m[r][k] -= factor * m[c][k];
-      v[r] -= factor * v[c];
+    std::swap(c[k], c[pivot]);
+    for (auto& row : c) std::swap(row[k], row[pivot]);
+    std::swap(d[k], d[pivot]);
+    if (!(c[k][k] > 1e-10 * largest)) break;  // the rest is null space
+    ++rank;
+    for (std::size_t r = k + 1; r < D; ++r) {
+      const double factor = c[r][k] / c[k][k];
+      for (std::size_t j = k; j < D; ++j) c[r][j] -= factor * c[k][j];
+      d[r] -= factor * d[k];
     }
+    form += d[k] * d[k] / c[k][k];
   }
-  std::array<double, D> x{};
-  for (std::size_t c = D; c-- > 0;) {
-    double sum = v[c];
-    for (std::size_t k = c + 1; k < D; ++k) sum -= m[c][k] * x[k];
-    x[c] = sum / m[c][c];
-  }
-  return x;
+  return form;
 }
 
 // From the fitted travelling waves: |a|² is the power moving along +k (E = τ(k)), |b|² along
@@ -956,11 +963,9 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
       for (int j = 0; j < 4; ++j) cov[i][j] += g[i] * g[j];
     }
   }
-  for (int i = 0; i < 4; ++i) cov[i][i] *= 1 + 1e-12;  // guard a degenerate (isotropic) case
-  const auto x = solve<4>(cov, d);
-  double t = 0;
-  for (int i = 0; i < 4; ++i) t += d[i] * x[i];
-  const double p = stats::chi_squared_upper_p(t, 4);
+  int rank = 0;
+  const double t = quadratic_form<4>(cov, d, rank);
+  const double p = rank > 0 ? stats::chi_squared_upper_p(t, rank) : 1.0;
   const double theta_measured = std::arg(measured_resultant) * kDegree;
   const double theta_expected = std::arg(expected_resultant) * kDegree;
   const double spread_measured = std::sqrt(2 * (1 - std::abs(measured_resultant) / power_total)) * kDegree;
@@ -979,7 +984,7 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
   Results out;
   out.push_back(statistical(
       "direction.distribution", a.subject(), theta_measured, theta_expected, p, alpha,
-      fmt::format("p ≥ α = {:.1e} (χ²(4) of the first two circular harmonics)", alpha),
+      fmt::format("p ≥ α = {:.1e} (χ²({}) of the first two circular harmonics)", alpha, rank),
       fmt::format("mean direction {:.1f}° (spread {:.1f}°) against {:.1f}° ({:.1f}°), "
                   "T = {:.1f}{}",
                   theta_measured, spread_measured, theta_expected, spread_expected, t, diagnosis)));
@@ -1042,8 +1047,15 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   m4 /= n;
   const double skewness = m3 / std::pow(m2, 1.5);
   const double kurtosis = m4 / (m2 * m2) - 3;
-  const double sd_skew = std::sqrt(6 * std::max(c3, 0.0) / n) / std::pow(sigma2, 1.5);
-  const double sd_kurt = std::sqrt(24 * std::max(c4, 0.0) / n) / (sigma2 * sigma2);
+  // Plus the rounding of the normalized moments (64 u log2 N, the dispersion check's bound): a
+  // law of zero variance (one wave pair: a sampled cosine's skewness is exactly 0) is judged
+  // against rounding instead of dividing by zero; 16 u log2 N was measured too tight (a 16²
+  // surface of one wave pair showed 550 u, property test of issue 10).
+  const double moment_rounding = 64 * a.unit_roundoff() * a.log2n();
+  const double sd_skew = std::hypot(std::sqrt(6 * std::max(c3, 0.0) / n) / std::pow(sigma2, 1.5),
+                                    moment_rounding);
+  const double sd_kurt = std::hypot(std::sqrt(24 * std::max(c4, 0.0) / n) / (sigma2 * sigma2),
+                                    moment_rounding);
   const double z_skew = skewness / sd_skew, z_kurt = kurtosis / sd_kurt;
   const double p_skew = stats::normal_two_sided_p(z_skew), p_kurt = stats::normal_two_sided_p(z_kurt);
   out.push_back(statistical("statistics.skewness", a.subject(), skewness, 0.0, p_skew, alpha,

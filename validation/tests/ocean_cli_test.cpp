@@ -320,6 +320,96 @@ TEST_F(OceanCli, SynthBadInputExitsTwoNamingTheProblem) {
   EXPECT_TRUE(contains(run.output, "--out")) << run.output;
 }
 
+// Issue 10's table: each case swell synth once accepted and made nonsense of (NaN, zeros, a
+// meaningless phase, std::bad_alloc) is refused with exit 2, naming the parameter and the
+// limit, and nothing is written.
+TEST_F(OceanCli, SynthRefusesCasesItCannotMakeNamingTheParameterAndTheLimit) {
+  const std::string base = "synth --model jonswap --tp 8 --impl fftw --out " + path("out") + " ";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"--hs 3 --n 64 --length 1e-300", {"1e-300 m grid", "of the spectrum's m0", "at least 1e-06", "rad/m", "[grid] length"}},
+      {"--hs 3 --n 64 --length 1e300", {"1e+300 m grid", "carries 0 of the spectrum's m0", "0.0344 … 0.567 rad/m"}},
+      {"--hs 3 --n 64 --length 100 --choppiness 1e300", {"choppiness", "1e+300", "fp32"}},
+      {"--hs 3 --n 64 --length 100 --depth 1e-300 --frames 4 --dt 0.5", {"of the spectrum's m0", "depth 1e-300 m"}},
+      {"--hs 3 --n 64 --length 100 --t0 1e300", {"t0 = 1e+300", "2⁵⁰", "|t| ≤"}},
+      {"--hs 3 --n 64 --length 100 --t0 2e14 --frames 1000 --dt 1e12", {"[time]", "frames = 1000"}},
+      {"--hs 3 --n 1048576 --length 100", {"needs about", "bytes", "available", "[grid] n"}},
+      {"--n 64 --length 100 --hs 1e-35", {"height", "below", "underflow", "fp64"}},
+      {"--hs 3 --n 64 --length 100 --choppiness 1e-40", {"displacements", "underflow", "choppiness"}},
+  };
+  for (const auto& [args, fragments] : cases) {
+    SCOPED_TRACE(args);
+    const CliRun run = swell(base + args);
+    EXPECT_EQ(run.exit_code, 2) << run.output;
+    for (const auto& fragment : fragments) {
+      EXPECT_TRUE(contains(run.output, fragment)) << "'" << fragment << "' not in: " << run.output;
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "out")) << "files were written for a refused case";
+  }
+  // What fp32 cannot carry, fp64 stored as .npy can: the rule is the storage format's.
+  const CliRun tiny = swell(base + "--n 64 --length 100 --hs 1e-35 --precision fp64 --format npy");
+  EXPECT_EQ(tiny.exit_code, 0) << tiny.output;
+}
+
+// The same rule in every command: frames of a valid case, with the case's patch changed to one
+// whose grid holds none of the spectrum, are refused by the gate and the fit (exit 2), naming
+// the grid's band; and a gate at a late t0 (1e6 s) passes swell's own fp64 frames, phases
+// reduced exactly.
+TEST_F(OceanCli, GateAndFitShareTheValidityRule) {
+  CliRun run = swell("synth --model jonswap --hs 3 --tp 8 --impl fftw --n 32 --length 200 "
+                     "--frames 3 --dt 0.5 --t0 1e6 --precision fp64 --format npy --out " + path("sea"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  run = swell("gate --case " + path("sea/case.toml"));
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  std::string text;
+  {
+    std::ifstream in(path("sea/case.toml"));
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const auto at = text.find("length = [");
+  ASSERT_NE(at, std::string::npos) << text;
+  text.replace(at, text.find('\n', at) - at, "length = [0.001, 0.001]");
+  {
+    std::ofstream(path("sea/case.toml")) << text;
+  }
+  for (const std::string command : {"gate --case " + path("sea/case.toml"),
+                                    "fit --input " + path("sea") + " --case " + path("sea/case.toml")}) {
+    SCOPED_TRACE(command);
+    run = swell(command);
+    EXPECT_EQ(run.exit_code, 2) << run.output;
+    EXPECT_TRUE(contains(run.output, "of the spectrum's m0")) << run.output;
+    EXPECT_TRUE(contains(run.output, "0.001 m grid")) << run.output;
+  }
+}
+
+// Refusals that teach: what to do instead, not only what was wrong.
+TEST_F(OceanCli, RefusalsSayWhatToDoInstead) {
+  const std::string out = " --impl fftw --n 16 --length 100 --out " + path("out");
+  {
+    std::ofstream(path("phillips_spreading.toml"))
+        << "[grid]\nn = [16, 16]\nlength = [100.0, 100.0]\n[spectrum]\nmodel = \"jonswap\"\n"
+           "hs = 3.0\ntp = 8.0\n[spreading]\nmodel = \"phillips\"\n";
+  }
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"synth --model jonswap --hs 3 --tp 8 --spreading phillips" + out,
+       {"its own directionality", "[spectrum]", "wind direction", "no [spreading]"}},
+      {"synth --case " + path("phillips_spreading.toml") + out,
+       {"phillips_spreading.toml:", "its own directionality", "--model phillips"}},
+      {"synth --model cos2s" + out, {"'cos2s' is a spreading model", "--spreading cos2s"}},
+      {"synth --model jonswop --hs 3 --tp 8" + out, {"did you mean 'jonswap'?"}},
+      {"synth --model phillips --hs 3" + out, {"--hs", "amplitude", "--model jonswap"}},
+      {"synth --model jonswap --hs 3 --tp 8 --impl radix2 --n 24 --length 100 --out " + path("out"),
+       {"powers of two", "for other sizes use --impl", "fftw"}},
+  };
+  for (const auto& [args, fragments] : cases) {
+    SCOPED_TRACE(args);
+    const CliRun run = swell(args);
+    EXPECT_EQ(run.exit_code, 2) << run.output;
+    for (const auto& fragment : fragments) {
+      EXPECT_TRUE(contains(run.output, fragment)) << "'" << fragment << "' not in: " << run.output;
+    }
+  }
+}
+
 // ==================================================================== end of swell synth
 
 }  // namespace

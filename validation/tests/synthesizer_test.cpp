@@ -268,6 +268,91 @@ TEST(Synthesizer, RefusesWhatItCannotDoWithNamedReasons) {
   EXPECT_THROW(synth.evaluate(0.0, small), swell::InvalidInput);
 }
 
+// Phases ω t are reduced exactly (reference/phase.hpp): at t = 1e9 s an fp64 frame equals the
+// direct sum of the definition with phases computed in binary128 to 1e-12 of its rms. The
+// rounded product fl(ωt) alone would be off by |ωt|·2⁻⁵³ ≈ 1e-6 rad here.
+TEST(Synthesizer, PhasesStayExactAtLateTimes) {
+  OceanCase c = jonswap_case(8, 8, 60.0, 60.0);
+  const double t = 1e9;
+  const FieldFrame frame = Synthesizer(c, {"fftw", Precision::f64}).frame(t);
+  const auto& h = frame.fields.at(Field::height);
+  // 2π in binary128 by Machin's formula π = 16 atan(1/5) − 4 atan(1/239), independent of the
+  // constants reference/phase.hpp splits 2π into.
+  auto arctan_inverse = [](int x) {
+    __float128 sum = 0, power = __float128(1) / x;
+    for (int k = 0; k < 60; ++k, power /= __float128(x) * x) sum += (k % 2 ? -power : power) / (2 * k + 1);
+    return sum;
+  };
+  const __float128 two_pi = 2 * (16 * arctan_inverse(5) - 4 * arctan_inverse(239));
+  std::vector<double> direct(h.size(), 0.0);
+  for (int j = 0; j < 8; ++j) {
+    for (int i = 0; i < 8; ++i) {
+      std::complex<long double> sum = 0;
+      for (int m = -4; m < 4; ++m) {
+        for (int n = -4; n < 4; ++n) {
+          if (!c.grid.carries_energy(n, m)) continue;
+          const double kx = n * c.grid.dkx(), ky = m * c.grid.dky();
+          const double omega = c.omega(std::hypot(kx, ky));
+          // ω t exactly (a 106-bit product fits binary128's 113 bits), reduced in binary128.
+          __float128 phase = __float128(omega) * __float128(t);
+          phase -= two_pi * __float128(static_cast<long long>(phase / two_pi));
+          const long double p = static_cast<long double>(phase);
+          const std::complex<long double> e(std::cos(p), -std::sin(p));
+          const auto a = std::complex<long double>(swell::impls::initial_amplitude(c, n, m));
+          const auto b = std::conj(std::complex<long double>(swell::impls::initial_amplitude(c, -n, -m)));
+          const long double x = i * c.grid.lx / 8, y = j * c.grid.ly / 8;
+          sum += (a * e + b * std::conj(e)) * std::polar(1.0L, (long double)(kx * x + ky * y));
+        }
+      }
+      direct[std::size_t(j) * 8 + i] = double(sum.real());
+    }
+  }
+  EXPECT_LT(relative_rms_difference(h, direct), 1e-12);
+}
+
+// Two fields share one complex transform; each is synthesized scaled near its own rms, so a
+// field far smaller than its partner keeps its precision: on a 0.5 m patch slopes are ~100×
+// the height, and with λ = 1e-6 the displacements are 1e-6 of it. Every fp32 field agrees with
+// the fp64 synthesis to 64 u; without the scaling the displacements were off by ~100 % here.
+// λ = 0 makes the displacements exactly 0 and J exactly 1.
+TEST(Synthesizer, EachFieldKeepsItsOwnPrecisionWhateverItsPartner) {
+  OceanCase c = jonswap_case(64, 64, 0.5, 0.5);
+  c.choppiness = 1e-6;
+  const FieldFrame f32 = Synthesizer(c, {"fftw", Precision::f32}).frame(3.0);
+  const FieldFrame f64 = Synthesizer(c, {"fftw", Precision::f64}).frame(3.0);
+  for (Field field : swell::reference::kAllFields) {
+    SCOPED_TRACE(swell::reference::field_name(field));
+    // (J itself: J − 1 ≈ 1e-6 here is below what an fp32 J ≈ 1 resolves.)
+    EXPECT_LT(relative_rms_difference(f32.fields.at(field), f64.fields.at(field)), 64 * 0x1p-24);
+  }
+  c.choppiness = 0;
+  const FieldFrame flat = Synthesizer(c, {"fftw", Precision::f32}).frame(3.0);
+  for (Field field : {Field::disp_x, Field::disp_y}) {
+    for (double v : flat.fields.at(field)) ASSERT_EQ(v, 0.0) << swell::reference::field_name(field);
+  }
+  for (double v : flat.fields.at(Field::jacobian)) ASSERT_EQ(v, 1.0);
+}
+
+// The synthesizer checks its own output: a case that bypasses the validity rule (a Synthesizer
+// built directly, λ = 1e300, so J = λ²(…) overflows) is an InternalError naming the field and the
+// case, never a frame with infinities.
+TEST(Synthesizer, ANonFiniteValueIsAnInternalErrorNamingTheField) {
+  OceanCase c = jonswap_case(16, 16, 100.0, 100.0);
+  c.choppiness = 1e300;
+  const Synthesizer synth(c, {"fftw", Precision::f64});
+  try {
+    (void)synth.frame(0.0);
+    FAIL() << "a frame with J = inf was returned";
+  } catch (const swell::InternalError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("jacobian"), std::string::npos) << what;
+    EXPECT_NE(what.find("jonswap"), std::string::npos) << what;
+  }
+  // And a time beyond what a phase carries is bad input, not a wrong frame.
+  c.choppiness = 1;
+  EXPECT_THROW((void)Synthesizer(c, {"fftw", Precision::f64}).frame(1e300), swell::InvalidInput);
+}
+
 }  // namespace
 
 // ---- test engine

@@ -21,6 +21,12 @@ struct ModelSpec {
 std::vector<std::string> frequency_model_names();   // phillips, pierson-moskowitz, …
 std::vector<std::string> spreading_model_names();
 
+enum class ModelKind { spectrum, spreading };
+// The message for a model name that is not one of `kind`'s: what the name is if it is one of
+// the other kind (phillips as a spreading: it carries its own directionality, and its wind
+// direction goes with the spectrum), the nearest valid name for a misspelling, and the list.
+std::string unknown_model_message(ModelKind kind, const std::string& name);
+
 // Every parameter a model accepts, with its unit and meaning (for --help and errors).
 struct ParameterInfo {
   std::string name, unit, meaning;

@@ -22,7 +22,8 @@ namespace swell::reference {
 
 inline constexpr double kLargestPhase = 0x1p50;  // rad, ≈ 1.13e15
 
-// ω t reduced by a multiple of 2π, |result| ≤ π + 2⁻⁴ for |ωt| ≤ kLargestPhase, accurate to
+// ω t reduced by a multiple of 2π, |result| ≤ π + 2⁻² for |ωt| ≤ kLargestPhase (q is chosen
+// from p alone, and p's rounding error e reaches ulp(p)/2 = 2⁻³ rad at 2⁵⁰), accurate to
 // ≈ 2e-15 rad (several ulps of π). Inline, branch-free and FMA-based so a loop over waves
 // vectorizes. Precondition: |ω t| ≤ kLargestPhase (not checked here: a case whose frames
 // exceed it is refused before any phase is computed).
