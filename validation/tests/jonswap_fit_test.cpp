@@ -533,16 +533,17 @@ struct Coverage {
   }
 };
 
-// The family-wise false-alarm rate of the calibration tests: 1 % over every (grid, parameter)
-// tested, split evenly (Bonferroni) over kCalibrationTests = 3 parameters × 11 grids.
+// The family-wise false-alarm rate of the calibration tests: 1 % over every statistical
+// assertion, split evenly (Bonferroni) over kCalibrationTests = 3 parameters × 11 resolved grids
+// × 2 (the coverage, and the spread over the standard error).
 constexpr double kFamilyAlpha = 0.01;
-constexpr int kCalibrationTests = 3 * 11;
+constexpr int kCalibrationTests = 3 * 11 * 2;
 
 // Fits `grid.seeds` independent realizations of the coverage case on `grid` (one frame each),
-// prints one table row per parameter and asserts, per parameter: every interval the fit calls
-// calibrated is counted, and their misses lie in the two-sided binomial acceptance region at
-// α = kFamilyAlpha / kCalibrationTests; intervals the fit calls "cannot" are not counted, and a
-// grid where it says "cannot" for every seed passes that parameter by saying so.
+// prints one table row per parameter and asserts, per parameter: on a resolved grid every
+// interval is called calibrated, and their misses lie in the two-sided binomial acceptance
+// region at α = kFamilyAlpha / kCalibrationTests; on a grid marked `cannot` every interval must
+// say "cannot" with a reason (and none is counted).
 void calibrate(const CalibrationGrid& grid, std::uint64_t seed0) {
   auto c = coverage_case(grid.n, grid.length);
   c.spreading = {"cos2s", {{"s", grid.s}}, {}};
@@ -564,7 +565,8 @@ void calibrate(const CalibrationGrid& grid, std::uint64_t seed0) {
     }
     converged += fit.converged;
     t[0].add(fit.hs), t[1].add(fit.tp), t[2].add(fit.gamma);
-    EXPECT_EQ(fit.hs.method, "profile-likelihood");
+    // An unresolved peak keeps the Wald interval for diagnosis (no profiles).
+    EXPECT_EQ(fit.hs.method, grid.cannot ? "wald" : "profile-likelihood");
   }
   const double lambda_p = 9.81 * 8.0 * 8.0 / (2 * M_PI);
   const double alpha = kFamilyAlpha / kCalibrationTests;
@@ -583,6 +585,17 @@ void calibrate(const CalibrationGrid& grid, std::uint64_t seed0) {
       EXPECT_FALSE(x.reason.empty());
     } else {
       EXPECT_EQ(x.calibrated, x.fits) << x.name << " on " << c.describe() << ": " << x.reason;
+    }
+    // The spread of n estimates against the mean standard error: the sample standard deviation
+    // of n near-normal values scatters by 1/√(2(n − 1)) relative (5 % at n = 200); two-sided at
+    // α, z = 3.79. Asserted from 4 peak wavelengths up: at 2 the Fisher standard error
+    // overstates the spread of Hs and γ by 10–17 % (measured, docs/fit.md §6) — the
+    // asymptotics behind a standard error are not reached there, which is why the intervals
+    // are profile-likelihood ones (their coverage is asserted on every grid).
+    if (x.calibrated > 1 && grid.length / lambda_p >= 4) {
+      const double z = 3.79;
+      EXPECT_NEAR(x.spread_over_se(), 1.0, z / std::sqrt(2.0 * (x.calibrated - 1)))
+          << x.name << " on " << c.describe();
     }
     if (x.calibrated > 0) {
       EXPECT_GE(x.misses(), lo) << x.name << " on " << c.describe() << ": too few misses";
