@@ -1,8 +1,10 @@
 // The JONSWAP fit (validation/jonswap_fit.hpp, docs/fit.md): its model against the reference
 // spectra, recovery and the 1/√R shrinking of its standard errors, its Fisher covariance
-// against the spread of estimates over seeds, and the coverage of its 95 % Wald intervals —
-// on periodograms drawn directly as μ·Exp(1) (the exact law of a Gaussian surface's
-// periodogram; fast) and on surfaces from the synthesizer (the calibration test).
+// against the spread of estimates over seeds, its profile-likelihood intervals against a brute-
+// force profile, the optimizer kept inside the valid region, and (label calibration) the
+// coverage of its 95 % intervals over grids of 1 to 20 peak wavelengths — on periodograms drawn
+// directly as μ·Exp(1) (the exact law of a Gaussian surface's periodogram; fast) and on
+// surfaces from the synthesizer.
 #include "swell/validation/jonswap_fit.hpp"
 
 #include <gtest/gtest.h>
@@ -10,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <random>
 #include <string>
 #include <vector>
@@ -113,17 +116,6 @@ struct Tallies {
   }
 };
 
-// The coverage criterion of the issue: 95 ± 4.5 %. With 200 trials and a true coverage of 95 %,
-// the count of covering intervals is Binomial(200, 0.95); it falls outside [181, 199] (90.5 %
-// to 99.5 %) with probability 0.27 % (P(X ≤ 180) = 0.26 %, P(X = 200) = 0.95²⁰⁰ = 0.004 %),
-// so the test's false-alarm probability for one parameter is 0.27 % and for the three at most
-// 0.81 % (union bound; 1 − 0.9973³ if they were independent). Measured over 6000 trials, the
-// Tp intervals cover 94.4 ± 0.3 % (docs/fit.md §6), for which P(X ≤ 180) is 0.9 %.
-void expect_calibrated(const Tally& t) {
-  EXPECT_GE(t.coverage(), 0.905) << t.name << ": the 95 % intervals cover too rarely";
-  EXPECT_LE(t.coverage(), 0.995) << t.name << ": the 95 % intervals cover too often";
-}
-
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -215,6 +207,10 @@ TEST(JonswapFit, RecoversTheParametersAndErrorsShrinkAsOneOverRootR) {
   const auto one = swell::validation::fit_jonswap_periodograms(c, {periodograms.front()});
   const auto copies = swell::validation::fit_jonswap_periodograms(
       c, std::vector<std::vector<double>>(9, periodograms.front()));
+  JonswapFitOptions wald_options;
+  wald_options.interval = swell::validation::IntervalMethod::wald;
+  const auto wald16 = swell::validation::fit_jonswap_periodograms(
+      c, {periodograms.begin(), periodograms.begin() + 16}, wald_options);
   for (const auto* fit : {&many, &sixty_four, &one, &copies}) {
     EXPECT_TRUE(fit->converged) << fit->report;
     EXPECT_EQ(fit->wave_vectors, many.wave_vectors);
@@ -236,9 +232,25 @@ TEST(JonswapFit, RecoversTheParametersAndErrorsShrinkAsOneOverRootR) {
     EXPECT_NEAR(m.standard_error / r64.standard_error, 2.0, 2.0 * 0.06) << names[i];
     EXPECT_NEAR(r9.value, r1.value, 1e-4 * r1.standard_error) << names[i];
     EXPECT_NEAR(r1.standard_error / r9.standard_error, 3.0, 1e-4) << names[i];
-    // The Wald interval: estimate ± 1.959964 se.
-    EXPECT_NEAR(m.ci95_high - m.value, 1.959964 * m.standard_error, 1e-6 * m.standard_error);
-    EXPECT_NEAR(m.value - m.ci95_low, 1.959964 * m.standard_error, 1e-6 * m.standard_error);
+    // The default interval is the profile-likelihood one, calibrated on this resolved grid (8
+    // peak wavelengths); with 16 realizations the likelihood is close to quadratic, so its ends
+    // lie within 0.1 se of the Wald ends (measured: 0.03–0.08 se outward).
+    EXPECT_EQ(m.method, "profile-likelihood");
+    EXPECT_TRUE(m.calibrated) << m.reason;
+    EXPECT_LT(m.ci95_low, m.value);
+    EXPECT_GT(m.ci95_high, m.value);
+    EXPECT_NEAR(m.ci95_high - m.value, 1.959964 * m.standard_error, 0.1 * m.standard_error);
+    EXPECT_NEAR(m.value - m.ci95_low, 1.959964 * m.standard_error, 0.1 * m.standard_error);
+    std::printf("        profile ends − Wald ends: %+.4f se, %+.4f se\n",
+                (m.ci95_low - (m.value - 1.959964 * m.standard_error)) / m.standard_error,
+                (m.ci95_high - (m.value + 1.959964 * m.standard_error)) / m.standard_error);
+    // Wald on request: estimate ± 1.959964 se, the same estimate and standard error.
+    const Estimate w = pick(wald16, i);
+    EXPECT_EQ(w.method, "wald");
+    EXPECT_EQ(w.value, m.value);
+    EXPECT_EQ(w.standard_error, m.standard_error);
+    EXPECT_NEAR(w.ci95_high - w.value, 1.959964 * w.standard_error, 1e-6 * w.standard_error);
+    EXPECT_NEAR(w.value - w.ci95_low, 1.959964 * w.standard_error, 1e-6 * w.standard_error);
   }
 }
 
@@ -294,10 +306,12 @@ TEST(JonswapFit, FisherCovarianceMatchesTheSpreadOverSeeds) {
   std::mt19937_64 rng(99);
   Tallies t;
   constexpr int kSeeds = 300;
+  JonswapFitOptions wald;  // only the standard errors are tested: skip the profiles
+  wald.interval = swell::validation::IntervalMethod::wald;
   const auto start = std::chrono::steady_clock::now();
   for (int s = 0; s < kSeeds; ++s) {
-    t.add(
-        swell::validation::fit_jonswap_periodograms(c, {exponential_periodogram(mu, c.grid, rng)}));
+    t.add(swell::validation::fit_jonswap_periodograms(
+        c, {exponential_periodogram(mu, c.grid, rng)}, wald));
   }
   std::printf("%d fits in %.1f s\n", kSeeds, seconds_since(start));
   t.print(
@@ -312,44 +326,321 @@ TEST(JonswapFit, FisherCovarianceMatchesTheSpreadOverSeeds) {
   }
 }
 
-// The fast version of the coverage test: the same case, periodograms drawn as μ·Exp(1).
-TEST(JonswapFit, WaldIntervalsAreCalibratedOnExponentialPeriodograms) {
-  const auto c = coverage_case();
-  const auto mu = true_mu(c);
-  std::mt19937_64 rng(2024);
-  Tallies t;
-  constexpr int kSeeds = 200;
-  const auto start = std::chrono::steady_clock::now();
-  for (int s = 0; s < kSeeds; ++s) {
-    t.add(
-        swell::validation::fit_jonswap_periodograms(c, {exponential_periodogram(mu, c.grid, rng)}));
-  }
-  std::printf("%d fits in %.1f s\n", kSeeds, seconds_since(start));
-  t.print("95 % Wald intervals, exponential periodograms (256² over 800 m):");
-  EXPECT_EQ(t.converged, kSeeds);
-  for (const auto* x : {&t.hs, &t.tp, &t.gamma}) expect_calibrated(*x);
+// ---------------------------------------------------------------- profile intervals
+
+// −log L of the fit's own ordinates (JonswapFit::wave_vector_index) at θ, for one periodogram,
+// from the public model μ(k; θ) (itself checked against the reference library above).
+double whittle_nll(const OceanCase& c, const std::vector<double>& periodogram,
+                   const std::vector<std::size_t>& index, double hs, double tp, double gamma) {
+  swell::validation::JonswapParameters p;
+  p.hs = hs, p.tp = tp, p.gamma = gamma;
+  const auto mu = swell::validation::jonswap_model_periodogram(c, p);
+  double total = 0;
+  for (auto k : index) total += std::log(mu[k]) + periodogram[k] / mu[k];
+  return total;
 }
 
-// The issue's requirement: over 200 seeds, surfaces synthesized by the fftw backend in fp64,
-// the 95 % intervals cover the true Hs, Tp and γ each in 95 ± 4.5 % of the trials (see
-// expect_calibrated for the false-alarm probability).
-TEST(JonswapFit, CoverageOfWaldIntervalsOnSynthesizedSurfaces) {
-  auto c = coverage_case();
-  swell::impls::SynthesizerOptions options;
-  options.backend = "fftw";
-  options.precision = swell::impls::Precision::f64;
-  Tallies t;
-  constexpr int kSeeds = 200;
-  const auto start = std::chrono::steady_clock::now();
-  for (int s = 0; s < kSeeds; ++s) {
-    c.seed = 1000 + s;
-    const swell::impls::Synthesizer synthesizer(c, options);
-    t.add(swell::validation::fit_jonswap(c, {synthesizer.frames()}));
+// min over Hs of −log L at (Tp, γ), in closed form: μ_k = Hs² g_k (g = μ at Hs = 1) gives
+// ∂/∂(Hs²) = 0 at Hs² = (1/K) Σ I_k/g_k, where −log L = Σ log g_k + K log Hs² + K.
+double nll_min_over_hs(const OceanCase& c, const std::vector<double>& periodogram,
+                       const std::vector<std::size_t>& index, double tp, double gamma) {
+  swell::validation::JonswapParameters p;
+  p.hs = 1, p.tp = tp, p.gamma = gamma;
+  const auto g = swell::validation::jonswap_model_periodogram(c, p);
+  double log_g = 0, ratio = 0;
+  for (auto k : index) log_g += std::log(g[k]), ratio += periodogram[k] / g[k];
+  const double K = double(index.size());
+  return log_g + K * std::log(ratio / K) + K;
+}
+
+// Golden-section minimum of f on [lo, hi] (unimodal there), to 1e-9 of the bracket.
+template <typename F>
+double golden_minimum(F&& f, double lo, double hi) {
+  const double r = (std::sqrt(5.0) - 1) / 2;
+  double x1 = hi - r * (hi - lo), x2 = lo + r * (hi - lo), f1 = f(x1), f2 = f(x2);
+  while (hi - lo > 1e-9 * (std::abs(lo) + std::abs(hi))) {
+    if (f1 < f2) {
+      hi = x2, x2 = x1, f2 = f1, x1 = hi - r * (hi - lo), f1 = f(x1);
+    } else {
+      lo = x1, x1 = x2, f1 = f2, x2 = lo + r * (hi - lo), f2 = f(x2);
+    }
   }
-  std::printf("%d syntheses and fits in %.1f s\n", kSeeds, seconds_since(start));
-  t.print("95 % Wald intervals, synthesized surfaces (fftw, fp64, 256² over 800 m):");
-  EXPECT_EQ(t.converged, kSeeds);
-  for (const auto* x : {&t.hs, &t.tp, &t.gamma}) expect_calibrated(*x);
+  return std::min(f1, f2);
+}
+
+// The profile −log L at θ_fixed = value (0 Hs, 1 Tp, 2 γ), minimized over the other two by a
+// route independent of the fit's: Hs in closed form (above) and the remaining one by golden
+// section over ±6 standard errors (γ ≥ 1, as in the fit); for the Hs profile, a 11 × 11 scan
+// of (Tp, γ) re-centred on its best point and shrunk by 4, seven times (to 6·4⁻⁶ ≈ 1.5e-3 se,
+// where −log L is within ~1e-6 of its minimum, far below the 0.01 asserted).
+double brute_force_profile(const OceanCase& c, const std::vector<double>& periodogram,
+                           const JonswapFit& fit, int fixed, double value) {
+  const auto& index = fit.wave_vector_index;
+  const double tp_se = fit.tp.standard_error, gamma_se = fit.gamma.standard_error;
+  if (fixed == 1) {
+    return golden_minimum([&](double g) { return nll_min_over_hs(c, periodogram, index, value, g); },
+                          std::max(1.0, fit.gamma.value - 6 * gamma_se),
+                          fit.gamma.value + 6 * gamma_se);
+  }
+  if (fixed == 2) {
+    return golden_minimum([&](double t) { return nll_min_over_hs(c, periodogram, index, t, value); },
+                          fit.tp.value - 6 * tp_se, fit.tp.value + 6 * tp_se);
+  }
+  double ct = fit.tp.value, cg = fit.gamma.value, ht = 6 * tp_se, hg = 6 * gamma_se,
+         best = HUGE_VAL;
+  for (int zoom = 0; zoom < 7; ++zoom) {
+    double best_t = ct, best_g = cg;
+    for (int i = -5; i <= 5; ++i) {
+      for (int j = -5; j <= 5; ++j) {
+        const double tp = ct + ht * i / 5.0, gamma = cg + hg * j / 5.0;
+        if (gamma < 1) continue;
+        const double v = whittle_nll(c, periodogram, index, value, tp, gamma);
+        if (v < best) best = v, best_t = tp, best_g = gamma;
+      }
+    }
+    ct = best_t, cg = best_g, ht /= 4, hg /= 4;
+  }
+  return best;
+}
+
+// The profile-likelihood interval against an independent computation: on one exponential
+// periodogram of a coarse grid (64² over 400 m: 4 peak wavelengths, where the likelihood is
+// visibly not quadratic), the brute-force profile deviance 2(min −log L at θ_i − −log L(θ̂)) at
+// each reported end is χ²₁(0.95) = 3.8415 within 0.01 (0.003 se in the end's position; the
+// fit's root finding stops at 1e-4 of √3.84), and the MLE itself is not beaten by the scan. At
+// the Wald ends the same deviance is printed: it is off by far more than 0.01 (else the test
+// would not tell the two apart).
+TEST(JonswapFit, ProfileIntervalEndsMatchABruteForceProfile) {
+  const auto c = coverage_case(64, 400);
+  std::mt19937_64 rng(31337);
+  const auto periodogram = exponential_periodogram(true_mu(c), c.grid, rng);
+  const auto fit = swell::validation::fit_jonswap_periodograms(c, {periodogram});
+  ASSERT_TRUE(fit.converged) << fit.report;
+  const double nll_hat =
+      whittle_nll(c, periodogram, fit.wave_vector_index, fit.hs.value, fit.tp.value,
+                  fit.gamma.value);
+  const Estimate e[3] = {fit.hs, fit.tp, fit.gamma};
+  const char* names[] = {"hs", "tp", "gamma"};
+  bool any_asymmetric = false;
+  for (int i = 0; i < 3; ++i) {
+    SCOPED_TRACE(names[i]);
+    ASSERT_EQ(e[i].method, "profile-likelihood");
+    ASSERT_TRUE(e[i].calibrated) << e[i].reason;
+    EXPECT_GE(brute_force_profile(c, periodogram, fit, i, e[i].value), nll_hat - 1e-6);
+    for (const double end : {e[i].ci95_low, e[i].ci95_high}) {
+      const double d = 2 * (brute_force_profile(c, periodogram, fit, i, end) - nll_hat);
+      EXPECT_NEAR(d, 3.841458820694124, 0.01) << "at " << end;
+    }
+    double wald_d[2];
+    for (int side = 0; side < 2; ++side) {
+      const double end = e[i].value + (side ? 1 : -1) * 1.959964 * e[i].standard_error;
+      wald_d[side] = 2 * (brute_force_profile(c, periodogram, fit, i, end) - nll_hat);
+      any_asymmetric |= std::abs(wald_d[side] - 3.8415) > 0.05;
+    }
+    std::printf("  %-5s %.5g, profile [%.5g, %.5g], Wald [%.5g, %.5g] (deviance %.3f, %.3f)\n",
+                names[i], e[i].value, e[i].ci95_low, e[i].ci95_high,
+                e[i].value - 1.959964 * e[i].standard_error,
+                e[i].value + 1.959964 * e[i].standard_error, wald_d[0], wald_d[1]);
+  }
+  EXPECT_TRUE(any_asymmetric) << "the case does not tell profile from Wald intervals";
+}
+
+// The optimizer stays inside the valid region: these seeds of 64² over 200 m, Tp 10 s (fp32
+// surfaces, the default) drove the previous log-γ parametrization to γ ≈ 1e-310 and a
+// NumericalError ("normalization: ∂F/∂γ … reached only nan"; found by searching seeds 0–399
+// with the previous code: 13 of 400). Now each fit ends cleanly with γ ≥ 1, and since the patch
+// holds only 1.28 peak wavelengths (λp = 156 m), every interval says why it is not calibrated.
+TEST(JonswapFit, StaysInsideTheValidRegionOnACoarseGrid) {
+  auto c = coverage_case(64, 200);
+  c.spectrum = {"jonswap", {{"hs", 3.0}, {"tp", 10.0}, {"gamma", 3.3}}, {}};
+  for (const int seed : {39, 62, 76, 97, 130, 154, 199, 209, 218, 280, 363, 372, 382}) {
+    SCOPED_TRACE(seed);
+    c.seed = seed;
+    JonswapFit fit;
+    ASSERT_NO_THROW(fit = swell::validation::fit_jonswap(c, {swell::impls::Synthesizer(c).frames()}));
+    EXPECT_GE(fit.gamma.value, 1.0);
+    EXPECT_GT(fit.hs.value, 0);
+    EXPECT_GT(fit.tp.value, 0);
+    EXPECT_NEAR(fit.peak_wavelengths, 200 / (9.81 * 100 / (2 * M_PI)), 1e-9);
+    for (const Estimate* e : {&fit.hs, &fit.tp, &fit.gamma}) {
+      EXPECT_TRUE(std::isfinite(e->value));
+      EXPECT_FALSE(e->calibrated);
+      EXPECT_NE(e->reason.find("1.28 peak wavelengths"), std::string::npos) << e->reason;
+    }
+  }
+}
+
+// ---------------------------------------------------------------- coverage across grids
+
+// Binomial(n, p) CDF P(X ≤ k), by summing the pmf in log space (lgamma): exact to rounding for
+// the n ≤ a few thousand used here.
+double binomial_cdf(int k, int n, double p) {
+  double total = 0;
+  for (int i = 0; i <= k; ++i) {
+    total += std::exp(std::lgamma(n + 1.0) - std::lgamma(i + 1.0) - std::lgamma(n - i + 1.0) +
+                      i * std::log(p) + (n - i) * std::log1p(-p));
+  }
+  return std::min(1.0, total);
+}
+
+// The two-sided acceptance region [lo, hi] for the count of misses of n intervals of true
+// coverage 95 %: P(X < lo) ≤ α/2 and P(X > hi) ≤ α/2, X ~ Binomial(n, 0.05).
+std::pair<int, int> miss_bounds(int n, double alpha) {
+  int lo = 0;
+  while (lo < n && binomial_cdf(lo, n, 0.05) <= alpha / 2) ++lo;  // P(X ≤ lo) > α/2: X < lo rare
+  int hi = 0;
+  while (hi < n && 1.0 - binomial_cdf(hi, n, 0.05) > alpha / 2) ++hi;
+  return {lo, hi};
+}
+
+// One grid of the calibration: a case, how its periodograms are made, how many seeds.
+struct CalibrationGrid {
+  int n;
+  double length;  // m
+  double s;       // cos-2s spreading
+  bool synthesized;
+  bool cannot = false;  // the resolution rule must refuse every interval on this grid
+  int seeds = 200;
+};
+
+// What the calibration measured on one grid for one parameter.
+struct Coverage {
+  Coverage(std::string n, double t) : name(std::move(n)), truth(t) {}
+  std::string name;
+  double truth;
+  int fits = 0, calibrated = 0, covered = 0;
+  double sum = 0, sum2 = 0, se2 = 0, n_eff = 0;
+  std::string reason;
+  // Spread and standard errors over the fits whose interval is called calibrated: the others
+  // may carry no finite standard error (a singular Fisher information).
+  void add(const Estimate& e) {
+    ++fits;
+    n_eff += e.effective_ordinates;
+    if (!e.calibrated) {
+      if (reason.empty()) reason = e.reason;
+      return;
+    }
+    sum += e.value, sum2 += e.value * e.value, se2 += e.standard_error * e.standard_error;
+    ++calibrated;
+    covered += e.ci95_low <= truth && truth <= e.ci95_high;
+  }
+  int misses() const { return calibrated - covered; }
+  // The spread of the estimates over seeds against the root mean reported standard error.
+  double spread_over_se() const {
+    if (calibrated < 2) return NAN;
+    const double variance = (sum2 - sum * sum / calibrated) / (calibrated - 1);
+    return std::sqrt(variance / (se2 / calibrated));
+  }
+};
+
+// The family-wise false-alarm rate of the calibration tests: 1 % over every statistical
+// assertion, split evenly (Bonferroni) over kCalibrationTests = 3 parameters × 11 resolved grids
+// × 2 (the coverage, and the spread over the standard error).
+constexpr double kFamilyAlpha = 0.01;
+constexpr int kCalibrationTests = 3 * 11 * 2;
+
+// Fits `grid.seeds` independent realizations of the coverage case on `grid` (one frame each),
+// prints one table row per parameter and asserts, per parameter: on a resolved grid every
+// interval is called calibrated, and their misses lie in the two-sided binomial acceptance
+// region at α = kFamilyAlpha / kCalibrationTests; on a grid marked `cannot` every interval must
+// say "cannot" with a reason (and none is counted).
+void calibrate(const CalibrationGrid& grid, std::uint64_t seed0) {
+  auto c = coverage_case(grid.n, grid.length);
+  c.spreading = {"cos2s", {{"s", grid.s}}, {}};
+  const auto mu = true_mu(c);
+  std::mt19937_64 rng(seed0);
+  std::vector<Coverage> t = {{"Hs", 3.0}, {"Tp", 8.0}, {"γ", 3.3}};
+  int converged = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (int s = 0; s < grid.seeds; ++s) {
+    JonswapFit fit;
+    if (grid.synthesized) {
+      c.seed = seed0 + s;
+      swell::impls::SynthesizerOptions options;
+      options.precision = swell::impls::Precision::f64;
+      fit = swell::validation::fit_jonswap(c, {swell::impls::Synthesizer(c, options).frames()});
+    } else {
+      fit = swell::validation::fit_jonswap_periodograms(c,
+                                                        {exponential_periodogram(mu, c.grid, rng)});
+    }
+    converged += fit.converged;
+    t[0].add(fit.hs), t[1].add(fit.tp), t[2].add(fit.gamma);
+    // An unresolved peak keeps the Wald interval for diagnosis (no profiles).
+    EXPECT_EQ(fit.hs.method, grid.cannot ? "wald" : "profile-likelihood");
+  }
+  const double lambda_p = 9.81 * 8.0 * 8.0 / (2 * M_PI);
+  const double alpha = kFamilyAlpha / kCalibrationTests;
+  for (const auto& x : t) {
+    const auto [lo, hi] = miss_bounds(x.calibrated, alpha);
+    std::printf(
+        "| %4d² | %6.0f m | %5.1f | %4.0f | %-11s | %3d | %2s | %3d/%3d | %5.1f %% | %3d | [%d, %d] "
+        "| %5.3f | %7.1f |\n",
+        grid.n, grid.length, grid.length / lambda_p, grid.s,
+        grid.synthesized ? "synthesized" : "μ·Exp(1)", grid.seeds, x.name.c_str(), x.calibrated,
+        x.fits, x.calibrated ? 100.0 * x.covered / x.calibrated : 0.0, x.misses(), lo, hi,
+        x.spread_over_se(), x.n_eff / x.fits);
+    if (!x.reason.empty()) std::printf("|   cannot (%d seeds): %s\n", x.fits - x.calibrated, x.reason.c_str());
+    if (grid.cannot) {
+      EXPECT_EQ(x.calibrated, 0) << x.name << " on " << c.describe() << ": must say cannot";
+      EXPECT_FALSE(x.reason.empty());
+    } else {
+      EXPECT_EQ(x.calibrated, x.fits) << x.name << " on " << c.describe() << ": " << x.reason;
+    }
+    // The spread of n estimates against the mean standard error: the sample standard deviation
+    // of n near-normal values scatters by 1/√(2(n − 1)) relative (5 % at n = 200); two-sided at
+    // α, z = 3.79. Asserted from 4 peak wavelengths up: at 2 the Fisher standard error
+    // overstates the spread of Hs and γ by 10–17 % (measured, docs/fit.md §6) — the
+    // asymptotics behind a standard error are not reached there, which is why the intervals
+    // are profile-likelihood ones (their coverage is asserted on every grid).
+    if (x.calibrated > 1 && grid.length / lambda_p >= 4) {
+      const double z = 3.79;
+      EXPECT_NEAR(x.spread_over_se(), 1.0, z / std::sqrt(2.0 * (x.calibrated - 1)))
+          << x.name << " on " << c.describe();
+    }
+    if (x.calibrated > 0) {
+      EXPECT_GE(x.misses(), lo) << x.name << " on " << c.describe() << ": too few misses";
+      EXPECT_LE(x.misses(), hi) << x.name << " on " << c.describe() << ": too many misses";
+    }
+  }
+  std::printf("|   %d/%d converged, %.1f s\n", converged, grid.seeds, seconds_since(start));
+  std::fflush(stdout);
+  // On a grid that must say "cannot" the optimizer may stop short (a flat likelihood along
+  // Hs, Tp beyond the patch); the fit still ends without an error, which is what is asserted.
+  if (!grid.cannot) {
+    EXPECT_EQ(converged, grid.seeds);
+  }
+}
+
+void print_header() {
+  std::printf(
+      "| grid | L | L/λp | s | periodograms | N | parameter | calibrated/N | coverage | misses "
+      "| bound | spread/se | n_eff |\n");
+}
+
+// The calibration (label "calibration"; ~1 min): 12 grids from 1 to 20 peak wavelengths, s = 2
+// to 20, 64² and 256², μ·Exp(1) periodograms (the exact law of a Gaussian surface's
+// periodogram) and, for the grid of the original report (256² over 400 m), synthesized surfaces.
+TEST(JonswapFit, CoverageOnSmallGrids) {
+  print_header();
+  int i = 0;
+  for (const CalibrationGrid g : {CalibrationGrid{64, 100, 10, false, true},
+                                  CalibrationGrid{64, 200, 2, false}, {64, 200, 20, false},
+                                  {64, 400, 2, false}, {64, 400, 20, false},
+                                  {64, 1000, 2, false}, {64, 1000, 20, false},
+                                  {64, 2000, 2, false}, {64, 2000, 20, false}}) {
+    calibrate(g, 5000 + 1000 * i++);
+  }
+}
+
+TEST(JonswapFit, CoverageOnSynthesizedSurfaces) {
+  print_header();
+  calibrate({256, 400, 10, true}, 1000);
+}
+
+TEST(JonswapFit, CoverageOnLargeGrids) {
+  print_header();
+  calibrate({256, 800, 2, false}, 30000);
+  calibrate({256, 2000, 20, false}, 40000);
 }
 
 // ---------------------------------------------------------------- bad input

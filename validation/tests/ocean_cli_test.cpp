@@ -451,7 +451,8 @@ TEST_F(OceanCli, FitSynthDirectoriesAndPatterns) {
   EXPECT_EQ(document.at("converged"), true);
   EXPECT_EQ(document.at("realizations"), 2);
   EXPECT_GT(document.at("wave_vectors").get<int>(), 20000);
-  EXPECT_EQ(document.at("interval"), "wald");
+  EXPECT_EQ(document.at("interval"), "profile-likelihood");
+  EXPECT_NEAR(document.at("peak_wavelengths").get<double>(), 800 / 99.92, 0.01);
   const std::map<std::string, double> truth = {{"hs", 3.0}, {"tp", 8.0}, {"gamma", 3.3}};
   ASSERT_EQ(document.at("fit").size(), 3u);
   for (const auto& [name, value] : truth) {
@@ -459,8 +460,19 @@ TEST_F(OceanCli, FitSynthDirectoriesAndPatterns) {
     const auto& e = document.at("fit").at(name);
     const double v = e.at("value"), se = e.at("se"), lo = e.at("ci95")[0], hi = e.at("ci95")[1];
     EXPECT_GT(se, 0);
-    EXPECT_NEAR(hi - v, 1.959964 * se, 1e-6 * se);
-    EXPECT_NEAR(v - lo, 1.959964 * se, 1e-6 * se);
+    // Profile-likelihood ends (checked exactly against a brute-force profile in
+    // swell_fit_tests; here the plumbing): around the estimate, not symmetric — these seeds
+    // measured γ −0.21/+0.24 se and Tp −0.32 se from the Wald ends — but each half-width within
+    // a factor 2 of the Wald one, which a wrong χ² level or a wrong sign would break.
+    EXPECT_EQ(e.at("method"), "profile-likelihood");
+    EXPECT_EQ(e.at("calibrated"), true);
+    EXPECT_FALSE(e.contains("reason"));
+    EXPECT_LT(lo, v);
+    EXPECT_GT(hi, v);
+    for (const double half : {hi - v, v - lo}) {
+      EXPECT_GT(half, 0.5 * 1.959964 * se);
+      EXPECT_LT(half, 2.0 * 1.959964 * se);
+    }
     EXPECT_NEAR(v, value, 5 * se);  // fixed seeds: deterministic
     EXPECT_EQ(document.at("truth").at(name), value);
   }
@@ -469,7 +481,7 @@ TEST_F(OceanCli, FitSynthDirectoriesAndPatterns) {
   const CliRun table = swell("fit --input " + path("r1") + " --case " + path("case.toml") +
                              " --sigma --json " + path("fit.json"));
   ASSERT_EQ(table.exit_code, 0) << table.output;
-  for (const char* fragment : {"95 % interval (Wald)", "hs [m]", "tp [s]", "gamma", "sigma_a",
+  for (const char* fragment : {"95 % interval", "profile-likelihood", "hs [m]", "tp [s]", "gamma", "sigma_a",
                                "sigma_b", "converged: yes", "1 realization"}) {
     EXPECT_TRUE(contains(table.output, fragment)) << fragment << " not in: " << table.output;
   }
@@ -478,6 +490,48 @@ TEST_F(OceanCli, FitSynthDirectoriesAndPatterns) {
   EXPECT_TRUE(with_sigma.at("fit").contains("sigma_a"));
   EXPECT_TRUE(with_sigma.at("fit").contains("sigma_b"));
   EXPECT_EQ(with_sigma.at("truth").at("sigma_b"), 0.09);
+
+  // --interval wald: estimate ± 1.959964 se, and the method says so.
+  const CliRun wald = swell("fit --input " + path("r1") + " --case " + path("case.toml") +
+                            " --interval wald --json -");
+  ASSERT_EQ(wald.exit_code, 0) << wald.output;
+  const auto w = nlohmann::json::parse(wald.output);
+  EXPECT_EQ(w.at("interval"), "wald");
+  for (const char* name : {"hs", "tp", "gamma"}) {
+    const auto& e = w.at("fit").at(name);
+    const double v = e.at("value"), se = e.at("se"), lo = e.at("ci95")[0], hi = e.at("ci95")[1];
+    EXPECT_EQ(e.at("method"), "wald");
+    EXPECT_NEAR(hi - v, 1.959964 * se, 1e-6 * se);
+    EXPECT_NEAR(v - lo, 1.959964 * se, 1e-6 * se);
+  }
+}
+
+// A patch of 1.5 peak wavelengths (64² over 150 m, Tp 8 s): the fit runs, but prints "cannot"
+// and why instead of an interval, and the JSON has no ci95 (null) but the reason.
+TEST_F(OceanCli, FitSaysCannotWhenThePeakIsNotResolved) {
+  std::string small = kFitCase;
+  small.replace(small.find("256, 256"), 8, "64, 64");
+  small.replace(small.find("800.0, 800.0"), 12, "150.0, 150.0");
+  std::ofstream(path("small.toml")) << small;
+  ASSERT_EQ(swell("synth --case " + path("small.toml") + " --impl fftw --seed 3 --out " +
+                  path("s")).exit_code, 0);
+  const CliRun table = swell("fit --input " + path("s") + " --case " + path("small.toml"));
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  for (const char* fragment : {"cannot (note 1)", "1.50 peak wavelengths", "no calibrated 95 %"}) {
+    EXPECT_TRUE(contains(table.output, fragment)) << fragment << " not in: " << table.output;
+  }
+  EXPECT_FALSE(contains(table.output, "inside")) << table.output;
+  const CliRun json = swell("fit --input " + path("s") + " --case " + path("small.toml") +
+                            " --json -");
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  const auto document = nlohmann::json::parse(json.output);
+  for (const char* name : {"hs", "tp", "gamma"}) {
+    const auto& e = document.at("fit").at(name);
+    EXPECT_EQ(e.at("calibrated"), false);
+    EXPECT_TRUE(e.at("ci95").is_null());
+    EXPECT_EQ(e.at("ci95_uncalibrated").size(), 2u);
+    EXPECT_TRUE(contains(e.at("reason").get<std::string>(), "peak wavelengths"));
+  }
 }
 
 TEST_F(OceanCli, FitBadInputExitsTwoNamingTheProblem) {
