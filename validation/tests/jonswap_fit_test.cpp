@@ -589,7 +589,7 @@ void calibrate(const CalibrationGrid& grid, std::uint64_t seed0) {
     // The spread of n estimates against the mean standard error: the sample standard deviation
     // of n near-normal values scatters by 1/√(2(n − 1)) relative (5 % at n = 200); two-sided at
     // α, z = 3.79. Asserted from 4 peak wavelengths up: at 2 the Fisher standard error
-    // overstates the spread of Hs and γ by 10–17 % (measured, docs/fit.md §6) — the
+    // overstates the spread of Hs and γ by 9–17 % (measured, docs/fit.md §6) — the
     // asymptotics behind a standard error are not reached there, which is why the intervals
     // are profile-likelihood ones (their coverage is asserted on every grid).
     if (x.calibrated > 1 && grid.length / lambda_p >= 4) {
