@@ -770,11 +770,11 @@ JonswapFit finish(const Whittle& w, const Solution& s, const JonswapFitOptions& 
       // t's Wald standard error: se(log θ) = se/θ; for γ, t = log γ as well.
       const double se_t = std::sqrt(log_covariance(p, p));
       const double t_hat = profiler.t_of(p, profiler.phi_hat);
-      // Where to stop looking: γ in [1, 1e4] (t = log γ in [0, 9.2]); the others within a
-      // factor e^±(max(40 se, 3)) of the estimate — far beyond any closing profile.
+      // Where to stop looking: within a factor e^±(max(40 se, 3)) of the estimate — far beyond
+      // any closing profile — and for γ also not below 1 (t = 0) nor, upward, short of 1e4.
       const double reach = std::max(40.0 * se_t, 3.0);
       const double t_min = p == 2 ? 0.0 : t_hat - reach;
-      const double t_max = p == 2 ? std::log(1e4) : t_hat + reach;
+      const double t_max = p == 2 ? std::max(std::log(1e4), t_hat + reach) : t_hat + reach;
       const auto low = profiler.find(p, -1, se_t, t_min, t_max);
       const auto high = profiler.find(p, +1, se_t, t_min, t_max);
       e[p].method = "profile-likelihood";
