@@ -439,11 +439,12 @@ std::pair<Vector<N>, Optimum> optimize(const Whittle& w, const Vector<N>& start,
   ceres::Solve(options, problem, u, &summary);
   Vector<N> phi = start + to_phi * Eigen::Map<const Vector<M>>(u);
   Optimum o;
-  o.nll = summary.final_cost;
+  // Evaluated again at the returned point rather than taken from summary.final_cost, which is
+  // not a cost at all when Ceres fails at its first evaluation (an infeasible warm start).
+  o.nll = nll_at<N>(w, phi);
   o.iterations = int(summary.iterations.size()) - 1;
   o.converged = summary.termination_type == ceres::CONVERGENCE;
   o.report = summary.BriefReport();
-  if (!std::isfinite(o.nll)) o.nll = nll_at<N>(w, phi);
   return {phi, o};
 }
 
