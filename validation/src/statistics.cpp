@@ -125,6 +125,59 @@ double WeightedExponentialSum::lugannani_rice(double x, bool upper) const {
 double WeightedExponentialSum::cdf(double x) const { return tail(x, false); }
 double WeightedExponentialSum::survival(double x) const { return tail(x, true); }
 
+double mixed_exponential_sum_cdf_at_zero(const std::vector<double>& coefficients) {
+  std::vector<double> c;
+  double lowest = 0, highest = 0, mean = 0, variance = 0;
+  for (double x : coefficients) {
+    if (!std::isfinite(x)) throw NumericalError("mixed_exponential_sum_cdf_at_zero: a coefficient is not finite");
+    if (x == 0) continue;
+    c.push_back(x);
+    lowest = std::min(lowest, x);
+    highest = std::max(highest, x);
+    mean += x;
+    variance += x * x;
+  }
+  if (highest == 0) return 1.0;  // every term ≤ 0 (or none)
+  if (lowest == 0) return 0.0;   // every term > 0
+  const double sd = std::sqrt(variance);
+  if (std::abs(mean) < 1e-3 * sd) return 0.5 * std::erfc(mean / sd / std::numbers::sqrt2);
+  // K'(s) = Σ c/(1 − c s) rises from −∞ at s = 1/lowest to +∞ at s = 1/highest; solve K'(s) = 0.
+  double lo = 1 / lowest, hi = 1 / highest;
+  double s = -mean / variance;  // the normal approximation's saddlepoint
+  if (!(s > lo && s < hi)) s = 0.5 * (lo + hi);
+  double k2 = 0;
+  for (int iteration = 0; iteration < 300; ++iteration) {
+    double d1 = 0;
+    k2 = 0;
+    for (double x : c) {
+      const double t = x / (1 - x * s);
+      d1 += t;
+      k2 += t * t;
+    }
+    if (d1 > 0) hi = s; else lo = s;
+    double next = s - d1 / k2;  // Newton inside the bracket
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::abs(next - s) <= 1e-15 * std::max(std::abs(s), 1e-300) || hi - lo <= 1e-15 * std::abs(s)) {
+      s = next;
+      break;
+    }
+    s = next;
+  }
+  k2 = 0;
+  double k = 0;
+  for (double x : c) {
+    const double t = x / (1 - x * s);
+    k2 += t * t;
+    k -= std::log1p(-x * s);
+  }
+  const double r = (s > 0 ? 1 : -1) * std::sqrt(std::max(0.0, -2 * k));
+  const double q = s * std::sqrt(k2);
+  const double phi = std::exp(-0.5 * r * r) / std::sqrt(2 * std::numbers::pi);
+  const double correction = phi * (1 / r - 1 / q);
+  if (r == 0 || !std::isfinite(correction)) return 0.5 * std::erfc(mean / sd / std::numbers::sqrt2);
+  return std::clamp(0.5 * std::erfc(-r / std::numbers::sqrt2) + correction, 0.0, 1.0);
+}
+
 double WeightedExponentialSum::two_sided_p(double x) const {
   if (std::isnan(x)) return std::numeric_limits<double>::quiet_NaN();
   return std::min(1.0, 2 * std::min(cdf(x), survival(x)));

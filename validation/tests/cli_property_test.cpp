@@ -198,7 +198,7 @@ std::string refusal_topic(const std::string& output) {
       {"needs about", "memory"},
       {"hides every wave vector", "png: quantization hides every wave vector"},
       {"outside the PNG", "png: a value outside --value-range"},
-      {"power of two", "backend: size not supported"},
+      {"powers of two", "backend: size not supported"},
   };
   for (const auto& [needle, topic] : rules) {
     if (message.find(needle) != std::string::npos) return topic;

@@ -4,6 +4,8 @@
 // 200 seeds is within the binomial bound of its α.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <boost/math/distributions/binomial.hpp>
 #include <boost/math/distributions/gamma.hpp>
 #include <cmath>
@@ -92,6 +94,47 @@ TEST(SamplingLaws, SaddlepointMatchesSimulationForUnequalWeights) {
   // Binomial sd of the count at p = 0.01 over 2e5 trials is 44.5; allow 5 sd.
   EXPECT_NEAR(above, 0.01 * trials, 225);
   EXPECT_NEAR(below, 0.01 * trials, 225);
+}
+
+// The law of a ratio of weighted exponential sums, P(Σ c E ≤ 0) with c of both signs: against
+// the closed form of two terms, P(a E1 − b E2 ≤ 0) = b/(a + b), and against simulation for the
+// law of a period m0/m1 over a tail of 40 waves where two dominate (the case the delta method
+// got wrong). The saddlepoint's relative error is O(1/n): 5 % is generous for two terms.
+TEST(SamplingLaws, RatioLawMatchesClosedFormAndSimulation) {
+  for (const auto& [a, b] : std::vector<std::pair<double, double>>{{1, 1}, {1, 3}, {5, 1}, {1, 40}}) {
+    const double exact = b / (a + b);
+    EXPECT_NEAR(stats::mixed_exponential_sum_cdf_at_zero({a, -b}) / exact, 1, 0.05) << a << " " << b;
+  }
+  EXPECT_EQ(stats::mixed_exponential_sum_cdf_at_zero({1, 2, 0}), 0);
+  EXPECT_EQ(stats::mixed_exponential_sum_cdf_at_zero({-1, -2}), 1);
+  std::vector<double> mu, omega;
+  for (int i = 1; i <= 40; ++i) {
+    mu.push_back(1.0 / (i * i));
+    omega.push_back(1 + 0.1 * i);
+  }
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const int trials = 200000;
+  std::vector<double> ratios;
+  for (int t = 0; t < trials; ++t) {
+    double m0 = 0, m1 = 0;
+    for (std::size_t i = 0; i < mu.size(); ++i) {
+      const double e = -mu[i] * std::log1p(-uniform(rng));
+      m0 += e;
+      m1 += e * omega[i];
+    }
+    ratios.push_back(m0 / m1);
+  }
+  std::sort(ratios.begin(), ratios.end());
+  for (double level : {0.001, 0.01, 0.5, 0.99, 0.999}) {
+    const double r = ratios[std::size_t(level * trials)];
+    std::vector<double> c;
+    for (std::size_t i = 0; i < mu.size(); ++i) c.push_back(mu[i] * (1 - r * omega[i]));
+    const double p = stats::mixed_exponential_sum_cdf_at_zero(c);
+    // Binomial sd of the empirical level, 5 of them, plus 3 % of the level for the saddlepoint.
+    const double sd = std::sqrt(level * (1 - level) / trials);
+    EXPECT_NEAR(p, level, 5 * sd + 0.03 * std::min(level, 1 - level)) << "level " << level;
+  }
 }
 
 // Stephens (1974), Table 1.2, case 0 (distribution fully specified): asymptotic upper

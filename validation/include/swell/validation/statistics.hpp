@@ -40,6 +40,13 @@ class WeightedExponentialSum {
   double mean_ = 0, variance_ = 0, max_weight_ = 0;
 };
 
+// P(Σ c_i E_i ≤ 0) for E_i ~ Exp(1) independent and coefficients c_i of both signs (zero ones
+// dropped): the law of a ratio of two weighted exponential sums, P(A/B ≤ r) = P(A − rB ≤ 0)
+// for B > 0. Lugannani–Rice at x = 0 with K(s) = −Σ log(1 − c s) on (1/min c, 1/max c)
+// (Butler 2007, §1.2; Daniels 1987 for ratios); 0 when every c > 0, 1 when every c < 0, the
+// normal law within 1e-3 sd of the mean, where Lugannani–Rice is 0/0.
+double mixed_exponential_sum_cdf_at_zero(const std::vector<double>& coefficients);
+
 // Anderson–Darling statistic A² of a sample against a fully specified continuous distribution,
 // given the sample's CDF values u_i = F(x_i) (any order) and their logs of survival
 // log(1 − u_i) (passed separately to keep precision in the upper tail).
