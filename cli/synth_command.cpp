@@ -254,6 +254,17 @@ int run_synth(const SynthOptions& o) {
     }
   }
   std::vector<fs::path> files;
+  // A refusal part-way (a PNG value outside --value-range in a later frame) removes the frames
+  // already written: a refused command leaves no output behind.
+  struct RemoveUnlessKept {
+    std::vector<fs::path>& files;
+    bool keep = false;
+    ~RemoveUnlessKept() {
+      if (keep) return;
+      std::error_code ignored;
+      for (const auto& file : files) fs::remove(file, ignored);
+    }
+  } cleanup{files};
   for (int f = 0; f < ocean.frames; ++f) {
     reference::FieldFrame frame = synthesizer.frame(ocean.time(f));
     if (png && f == 0) {
@@ -286,6 +297,7 @@ int run_synth(const SynthOptions& o) {
   c.directory = out;
   const fs::path case_path = out / "case.toml";
   validation::write_case_file(case_path, c);
+  cleanup.keep = true;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

@@ -542,6 +542,21 @@ std::vector<fs::path> write_image_frame(const fs::path& path, const Grid& grid,
     spec.attribute("ImageDescription", kTiffChannelsPrefix + names);
   }
   spec.attribute("Software", "swell");
+  if (png) {
+    // Every value must have a pixel before the file is created: a refusal leaves no file.
+    const double step = (options.png_range.high - options.png_range.low) / top;
+    for (const Field field : fields) {
+      const auto& values = frame.fields.at(field);
+      for (std::size_t p = 0; p < values.size(); ++p) {
+        const double v = values[p];
+        if (v >= options.png_range.low - step / 2 && v <= options.png_range.high + step / 2) continue;
+        throw InvalidInput(fmt::format("{}: {} = {:g} at (i, j) = ({}, {}) lies outside the PNG "
+                                       "value range [{:g}, {:g}]",
+                                       file, reference::field_name(field), v, p % grid.nx,
+                                       p / grid.nx, options.png_range.low, options.png_range.high));
+      }
+    }
+  }
   if (!output->open(file, spec)) {
     throw InvalidInput(fmt::format("{}: cannot write: {}", file, output->geterror()));
   }

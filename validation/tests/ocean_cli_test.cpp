@@ -305,7 +305,15 @@ TEST_F(OceanCli, SynthBadInputExitsTwoNamingTheProblem) {
       EXPECT_TRUE(contains(run.output, fragment)) << "'" << fragment << "' not in: " << run.output;
     }
     EXPECT_FALSE(fs::exists(dir_ / "out" / "case.toml")) << "a case was written for bad input";
+    EXPECT_TRUE(!fs::exists(dir_ / "out") || fs::is_empty(dir_ / "out"))
+        << "files were left behind for bad input";
   }
+  // A value outside the PNG range in a later frame removes the frames already written.
+  const CliRun late = swell(base + jonswap + grid + "--frames 60 --dt 1 --format png --value-range=-3,3");
+  EXPECT_EQ(late.exit_code, 2) << late.output;
+  EXPECT_TRUE(contains(late.output, "frame_0003.png")) << late.output;  // frames 0–2 were written
+  EXPECT_TRUE(contains(late.output, "outside the PNG value range")) << late.output;
+  EXPECT_TRUE(!fs::exists(dir_ / "out") || fs::is_empty(dir_ / "out")) << "frames were left behind";
   // Unknown backend and a size the backend cannot do.
   CliRun run = swell("synth --impl nope --out " + path("out") + " " + jonswap + grid);
   EXPECT_EQ(run.exit_code, 2) << run.output;
