@@ -372,6 +372,9 @@ GateReport run_gate(const std::filesystem::path& case_path, const GateOptions& o
   reference::require_memory(std::uint64_t(std::min(bytes, 1.8e19)), "swell gate",
                             fmt::format("{} frame{} of {}×{}", case_file.ocean.frames,
                                         case_file.ocean.frames == 1 ? "" : "s", grid.nx, grid.ny));
+  // The rest of the rule before any frame is read (a case no frames can satisfy is refused as
+  // such, not as a missing file); the analysis applies it again in the frames' stored format.
+  reference::require_valid_sampling(case_file.ocean, reference::kFloat64);
   // Frames are read on OpenImageIO's "threads" (read_frames reads frames in parallel), and
   // OpenEXR decompresses a file's blocks on its own pool.
   OIIO::attribute("threads", threads);
