@@ -389,6 +389,20 @@ TEST_F(OceanCli, GateAndFitShareTheValidityRule) {
   }
 }
 
+// The gate refuses a case no frames can satisfy before it looks for any frame.
+TEST_F(OceanCli, GateRefusesAnInvalidCaseBeforeReadingFrames) {
+  {
+    std::ofstream(path("case.toml"))
+        << "[grid]\nn = [64, 64]\nlength = [1e-3, 1e-3]\n[spectrum]\nmodel = \"jonswap\"\n"
+           "hs = 3.0\ntp = 8.0\n[spreading]\nmodel = \"cos2s\"\ns = 10.0\n[input]\n"
+           "files = \"nowhere_%04d.exr\"\nheight = \"h\"\n";
+  }
+  const CliRun run = swell("gate --case " + path("case.toml"));
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, "of the spectrum's m0")) << run.output;
+  EXPECT_FALSE(contains(run.output, "missing frame")) << run.output;
+}
+
 // Refusals that teach: what to do instead, not only what was wrong.
 TEST_F(OceanCli, RefusalsSayWhatToDoInstead) {
   const std::string out = " --impl fftw --n 16 --length 100 --out " + path("out");
