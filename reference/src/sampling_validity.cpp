@@ -173,6 +173,12 @@ void require_valid_sampling(const OceanCase& ocean_case, const NumberFormat& num
     throw InternalError("require_valid_sampling: travelling power of the wrong size");
   }
   const SamplingSummary s = summarize_sampling(ocean_case, travelling);
+  if (s.k_max == 0) {
+    throw InvalidInput(fmt::format(
+        "the {} grid has no wave vector that carries energy (only k = 0 and the Nyquist row and "
+        "column, which carry none): [grid] n must be at least 3 along one axis",
+        describe_grid(g)));
+  }
   if (!(s.fraction >= kSmallestEnergyFraction)) {
     const EnergyBand band = energy_band(ocean_case);
     std::string where = band.known

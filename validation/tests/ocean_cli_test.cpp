@@ -343,6 +343,7 @@ TEST_F(OceanCli, SynthRefusesCasesItCannotMakeNamingTheParameterAndTheLimit) {
       {"--hs 3 --n 1048576 --length 100", {"needs about", "bytes", "available", "[grid] n"}},
       {"--n 64 --length 100 --hs 1e-35", {"height", "below", "underflow", "fp64"}},
       {"--hs 3 --n 64 --length 100 --choppiness 1e-40", {"displacements", "underflow", "choppiness"}},
+      {"--hs 3 --n 2 --length 100", {"2² over 100 m grid", "no wave vector that carries energy", "at least 3"}},
   };
   for (const auto& [args, fragments] : cases) {
     SCOPED_TRACE(args);
