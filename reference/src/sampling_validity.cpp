@@ -50,6 +50,18 @@ EnergyBand energy_band(const OceanCase& ocean_case) {
   return band;
 }
 
+// The largest |k| of a wave vector that carries energy: index n/2 − 1 for even n (−n/2 is
+// Nyquist), (n − 1)/2 for odd n, 0 for one sample; 0 when only k = 0 and Nyquist remain.
+double largest_energy_wavenumber(const Grid& g) {
+  auto largest_index = [](int n) { return n % 2 == 0 ? n / 2 - 1 : (n - 1) / 2; };
+  return std::hypot(largest_index(g.nx) * g.dkx(), largest_index(g.ny) * g.dky());
+}
+
+// The largest |t| over the case's frames (t0 and t0 + (frames − 1) dt), s.
+double largest_frame_time(const OceanCase& c) {
+  return std::max(std::abs(c.t0), std::abs(c.t0 + double(c.frames - 1) * c.dt));
+}
+
 std::string describe_grid(const Grid& g) {
   return g.nx == g.ny && g.lx == g.ly ? fmt::format("{}² over {:g} m", g.nx, g.lx)
                                       : fmt::format("{}×{} over {:g}×{:g} m", g.nx, g.ny, g.lx, g.ly);
@@ -75,14 +87,9 @@ SamplingSummary summarize_sampling(const OceanCase& ocean_case,
   out.m0 = spectral_moment(spectrum->omnidirectional(), 0);
   const double dkx = g.dkx(), dky = g.dky();
   out.k_min = std::min(dkx, dky);
-  // The largest energy-carrying index along an axis: n/2 − 1 for even n (−n/2 is Nyquist),
-  // (n − 1)/2 for odd n; 0 for a single sample.
-  auto largest_index = [](int n) { return n % 2 == 0 ? n / 2 - 1 : (n - 1) / 2; };
-  out.k_max = std::hypot(largest_index(g.nx) * dkx, largest_index(g.ny) * dky);
-  if (g.nx == 2 && g.ny == 2) out.k_max = 0;  // only k = 0 and Nyquist: nothing carries energy
+  out.k_max = largest_energy_wavenumber(g);
   out.omega_max = ocean_case.omega(out.k_max);
-  const double t_last = ocean_case.t0 + double(ocean_case.frames - 1) * ocean_case.dt;
-  out.time_max = std::max(std::abs(ocean_case.t0), std::abs(t_last));
+  out.time_max = largest_frame_time(ocean_case);
 
   double sx = 0, sy = 0, dx = 0, dy = 0, dxx = 0, dyy = 0, dxy = 0;
   for (int j = 0; j < g.ny; ++j) {
@@ -153,11 +160,12 @@ void require_valid_sampling(const OceanCase& ocean_case, const NumberFormat& num
 
   // Times first: it needs no pass over the grid.
   {
-    const double largest_k = std::hypot(g.nx / 2 * g.dkx(), g.ny / 2 * g.dky());
+    // The fastest wave the grid carries, as the synthesizer's own check sees it.
+    const double largest_k = largest_energy_wavenumber(g);
     const double omega_max = ocean_case.omega(largest_k);
     const double t_last = ocean_case.t0 + double(ocean_case.frames - 1) * ocean_case.dt;
-    const double time_max = std::max(std::abs(ocean_case.t0), std::abs(t_last));
-    const double phase = time_max == 0 ? 0 : omega_max * time_max;
+    const double time_max = largest_frame_time(ocean_case);
+    const double phase = time_max == 0 || omega_max == 0 ? 0 : omega_max * time_max;
     if (!(phase <= kLargestPhase)) {
       throw InvalidInput(fmt::format(
           "[time] t0 = {:g} s, dt = {:g} s, frames = {}: the last frame time {:g} s makes the "
