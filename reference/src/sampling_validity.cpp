@@ -57,11 +57,6 @@ double largest_energy_wavenumber(const Grid& g) {
   return std::hypot(largest_index(g.nx) * g.dkx(), largest_index(g.ny) * g.dky());
 }
 
-// The largest |t| over the case's frames (t0 and t0 + (frames − 1) dt), s.
-double largest_frame_time(const OceanCase& c) {
-  return std::max(std::abs(c.t0), std::abs(c.t0 + double(c.frames - 1) * c.dt));
-}
-
 std::string describe_grid(const Grid& g) {
   return g.nx == g.ny && g.lx == g.ly ? fmt::format("{}² over {:g} m", g.nx, g.lx)
                                       : fmt::format("{}×{} over {:g}×{:g} m", g.nx, g.ny, g.lx, g.ly);
@@ -88,8 +83,6 @@ SamplingSummary summarize_sampling(const OceanCase& ocean_case,
   const double dkx = g.dkx(), dky = g.dky();
   out.k_min = std::min(dkx, dky);
   out.k_max = largest_energy_wavenumber(g);
-  out.omega_max = ocean_case.omega(out.k_max);
-  out.time_max = largest_frame_time(ocean_case);
 
   double sx = 0, sy = 0, dx = 0, dy = 0, dxx = 0, dyy = 0, dxy = 0;
   for (int j = 0; j < g.ny; ++j) {
@@ -164,15 +157,15 @@ void require_valid_sampling(const OceanCase& ocean_case, const NumberFormat& num
     const double largest_k = largest_energy_wavenumber(g);
     const double omega_max = ocean_case.omega(largest_k);
     const double t_last = ocean_case.t0 + double(ocean_case.frames - 1) * ocean_case.dt;
-    const double time_max = largest_frame_time(ocean_case);
+    const double time_max = std::max(std::abs(ocean_case.t0), std::abs(t_last));
     const double phase = time_max == 0 || omega_max == 0 ? 0 : omega_max * time_max;
     if (!(phase <= kLargestPhase)) {
       throw InvalidInput(fmt::format(
-          "[time] t0 = {:g} s, dt = {:g} s, frames = {}: the last frame time {:g} s makes the "
+          "[time] t0 = {:g} s, dt = {:g} s, frames = {}: frame times up to |t| = {:g} s make the "
           "fastest wave's phase ω t = {:.3g} rad (ω = {:.4g} rad/s at |k| = {:.4g} rad/m), "
           "beyond the {:.3g} rad ({}) that a phase can carry with every bit of a double "
           "(reference/phase.hpp); frames must stay within |t| ≤ {:.4g} s on this grid",
-          ocean_case.t0, ocean_case.dt, ocean_case.frames, t_last, phase,
+          ocean_case.t0, ocean_case.dt, ocean_case.frames, time_max, phase,
           omega_max, largest_k, kLargestPhase, "2⁵⁰", kLargestPhase / omega_max));
     }
   }
@@ -211,26 +204,26 @@ void require_valid_sampling(const OceanCase& ocean_case, const NumberFormat& num
   struct FieldRms {
     const char* what;
     double rms;
-    double highest;
+    bool multiplied;  // J multiplies two of them: their limit is √largest
     const char* parameter;
   };
   const FieldRms fields[] = {
-      {"height", std::sqrt(s.m0_on_grid), numbers.largest / 64, "the spectrum's scale (hs, alpha)"},
-      {"slopes", std::sqrt(s.slope_variance), numbers.largest / 64, "the spectrum's scale"},
-      {"displacements λD", lambda * std::sqrt(s.displacement_variance), numbers.largest / 64,
+      {"height", std::sqrt(s.m0_on_grid), false, "the spectrum's scale (hs, alpha)"},
+      {"slopes", std::sqrt(s.slope_variance), false, "the spectrum's scale"},
+      {"displacements λD", lambda * std::sqrt(s.displacement_variance), false,
        "[synthesis] choppiness"},
-      {"Jacobian terms λ∂D/∂x", lambda * std::sqrt(s.strain_variance),
-       std::sqrt(numbers.largest) / 64, "[synthesis] choppiness"},
+      {"Jacobian terms λ∂D/∂x", lambda * std::sqrt(s.strain_variance), true,
+       "[synthesis] choppiness"},
   };
   for (const FieldRms& f : fields) {
-    if (f.rms == 0 && lambda == 0) continue;  // λ = 0: no displacement, J = 1 exactly
-    if (!(f.rms <= f.highest)) {
+    if (f.rms == 0) continue;  // zero by definition (λ = 0: no displacement, J = 1 exactly)
+    const double highest = (f.multiplied ? std::sqrt(numbers.largest) : numbers.largest) / 64;
+    if (!(f.rms <= highest)) {
       throw InvalidInput(fmt::format(
           "the {} of this case have an rms of {:.3g} on its {} grid, above the {:.3g} that {} "
           "values can hold with room for the largest samples{}: reduce {} (choppiness = {:g})",
-          f.what, f.rms, describe_grid(g), f.highest, numbers.name,
-          std::string_view(f.what).starts_with("Jacobian") ? " (J multiplies two of them)" : "",
-          f.parameter, ocean_case.choppiness));
+          f.what, f.rms, describe_grid(g), highest, numbers.name,
+          f.multiplied ? " (J multiplies two of them)" : "", f.parameter, ocean_case.choppiness));
     }
     if (!(f.rms >= lowest)) {
       throw InvalidInput(fmt::format(

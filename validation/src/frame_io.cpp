@@ -542,36 +542,30 @@ std::vector<fs::path> write_image_frame(const fs::path& path, const Grid& grid,
     spec.attribute("ImageDescription", kTiffChannelsPrefix + names);
   }
   spec.attribute("Software", "swell");
+  // A PNG pixel is round((v − low)/(high − low) · top), top = 2^bits − 1; a value outside
+  // [low, high] (by more than half a step) has no pixel and is an error, never clipped. Every
+  // value is checked before the file is created, so a refusal leaves no file. 8-bit pixels go
+  // to OpenImageIO as 16-bit values p·257, which it stores back as p exactly.
+  const IntegerRange range = options.png_range;
+  auto pixel = [&](double v) { return std::nearbyint((v - range.low) / (range.high - range.low) * top); };
   if (png) {
-    // Every value must have a pixel before the file is created: a refusal leaves no file.
-    const double step = (options.png_range.high - options.png_range.low) / top;
     for (const Field field : fields) {
       const auto& values = frame.fields.at(field);
       for (std::size_t p = 0; p < values.size(); ++p) {
-        const double v = values[p];
-        if (v >= options.png_range.low - step / 2 && v <= options.png_range.high + step / 2) continue;
+        const double level = pixel(values[p]);
+        if (level >= 0 && level <= top) continue;
         throw InvalidInput(fmt::format("{}: {} = {:g} at (i, j) = ({}, {}) lies outside the PNG "
                                        "value range [{:g}, {:g}]",
-                                       file, reference::field_name(field), v, p % grid.nx,
-                                       p / grid.nx, options.png_range.low, options.png_range.high));
+                                       file, reference::field_name(field), values[p],
+                                       p % grid.nx, p / grid.nx, range.low, range.high));
       }
     }
   }
   if (!output->open(file, spec)) {
     throw InvalidInput(fmt::format("{}: cannot write: {}", file, output->geterror()));
   }
-  // A PNG pixel is round((v − low)/(high − low) · top), top = 2^bits − 1; a value outside
-  // [low, high] (by more than half a step) has no pixel and is an error, never clipped. 8-bit
-  // pixels go to OpenImageIO as 16-bit values p·257, which it stores back as p exactly.
-  const IntegerRange range = options.png_range;
-  auto pixel_of = [&](double v, Field field, std::size_t x, int y) -> std::uint16_t {
-    const double p = std::nearbyint((v - range.low) / (range.high - range.low) * top);
-    if (!(p >= 0 && p <= top)) {
-      throw InvalidInput(fmt::format("{}: {} = {:g} at (i, j) = ({}, {}) lies outside the PNG "
-                                     "value range [{:g}, {:g}]",
-                                     file, reference::field_name(field), v, x, y, range.low,
-                                     range.high));
-    }
+  auto pixel_of = [&](double v) -> std::uint16_t {
+    const double p = pixel(v);  // in [0, top]: checked above
     return static_cast<std::uint16_t>(top == 255.0 ? p * 257 : p);
   };
   // Interleaved rows, a block at a time, so that a large frame never needs a second copy.
@@ -594,7 +588,7 @@ std::vector<fs::path> write_image_frame(const fs::path& path, const Grid& grid,
           const double v = values[static_cast<std::size_t>(y) * nx + x];
           const std::size_t at = ((y - y0) * nx + x) * fields.size() + c;
           if (png) {
-            pixels[at] = pixel_of(v, fields[c], x, y);
+            pixels[at] = pixel_of(v);
           } else {
             block[at] = static_cast<float>(v);
           }

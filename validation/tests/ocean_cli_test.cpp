@@ -33,6 +33,14 @@ bool contains(const std::string& text, const std::string& fragment) {
   return text.find(fragment) != std::string::npos;
 }
 
+// Bad input: exit 2, and the message carries every fragment that names the problem.
+void expect_refusal(const CliRun& run, const std::vector<std::string>& fragments) {
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  for (const auto& fragment : fragments) {
+    EXPECT_TRUE(contains(run.output, fragment)) << "'" << fragment << "' not in: " << run.output;
+  }
+}
+
 // A fresh directory per test, removed afterwards.
 class OceanCli : public ::testing::Test {
  protected:
@@ -300,10 +308,7 @@ TEST_F(OceanCli, SynthBadInputExitsTwoNamingTheProblem) {
   for (const auto& [args, fragments] : cases) {
     SCOPED_TRACE(args);
     const CliRun run = swell(base + args);
-    EXPECT_EQ(run.exit_code, 2) << run.output;
-    for (const auto& fragment : fragments) {
-      EXPECT_TRUE(contains(run.output, fragment)) << "'" << fragment << "' not in: " << run.output;
-    }
+    expect_refusal(run, fragments);
     EXPECT_FALSE(fs::exists(dir_ / "out" / "case.toml")) << "a case was written for bad input";
     EXPECT_TRUE(!fs::exists(dir_ / "out") || fs::is_empty(dir_ / "out"))
         << "files were left behind for bad input";
@@ -348,10 +353,7 @@ TEST_F(OceanCli, SynthRefusesCasesItCannotMakeNamingTheParameterAndTheLimit) {
   for (const auto& [args, fragments] : cases) {
     SCOPED_TRACE(args);
     const CliRun run = swell(base + args);
-    EXPECT_EQ(run.exit_code, 2) << run.output;
-    for (const auto& fragment : fragments) {
-      EXPECT_TRUE(contains(run.output, fragment)) << "'" << fragment << "' not in: " << run.output;
-    }
+    expect_refusal(run, fragments);
     EXPECT_FALSE(fs::exists(dir_ / "out")) << "files were written for a refused case";
   }
   // What fp32 cannot carry, fp64 stored as .npy can: the rule is the storage format's.
@@ -380,7 +382,7 @@ TEST_F(OceanCli, GateAndFitShareTheValidityRule) {
   {
     std::ofstream(path("sea/case.toml")) << text;
   }
-  for (const std::string command : {"gate --case " + path("sea/case.toml"),
+  for (const std::string& command : {"gate --case " + path("sea/case.toml"),
                                     "fit --input " + path("sea") + " --case " + path("sea/case.toml")}) {
     SCOPED_TRACE(command);
     run = swell(command);
@@ -426,10 +428,7 @@ TEST_F(OceanCli, RefusalsSayWhatToDoInstead) {
   for (const auto& [args, fragments] : cases) {
     SCOPED_TRACE(args);
     const CliRun run = swell(args);
-    EXPECT_EQ(run.exit_code, 2) << run.output;
-    for (const auto& fragment : fragments) {
-      EXPECT_TRUE(contains(run.output, fragment)) << "'" << fragment << "' not in: " << run.output;
-    }
+    expect_refusal(run, fragments);
   }
 }
 
@@ -586,10 +585,7 @@ wind_speed = 10.0
   for (const auto& [args, fragments] : cases) {
     SCOPED_TRACE(args);
     const CliRun run = swell("fit " + args);
-    EXPECT_EQ(run.exit_code, 2) << run.output;
-    for (const auto& fragment : fragments) {
-      EXPECT_TRUE(contains(run.output, fragment)) << "'" << fragment << "' not in: " << run.output;
-    }
+    expect_refusal(run, fragments);
   }
 }
 

@@ -11,19 +11,11 @@
 #include "swell/reference/moments.hpp"
 #include "swell/reference/phase.hpp"
 #include "swell/reference/sampling_validity.hpp"
+#include "test_support.hpp"
 
 namespace {
 
 using namespace swell::reference;
-
-__float128 two_pi_binary128() {  // Machin: π = 16 atan(1/5) − 4 atan(1/239)
-  auto arctan_inverse = [](int x) {
-    __float128 sum = 0, power = __float128(1) / x;
-    for (int k = 0; k < 60; ++k, power /= __float128(x) * x) sum += (k % 2 ? -power : power) / (2 * k + 1);
-    return sum;
-  };
-  return 2 * (16 * arctan_inverse(5) - 4 * arctan_inverse(239));
-}
 
 // Distance between two phases modulo 2π, in binary128.
 double phase_distance(__float128 a, __float128 b, __float128 two_pi) {
@@ -38,7 +30,7 @@ double phase_distance(__float128 a, __float128 b, __float128 two_pi) {
 // doubles, which binary128's 113 bits hold) modulo 2π to 4e-15 rad — a few roundings of O(π)
 // sums (phase.hpp) — while fl(ω t) drifts as |ω t| 2⁻⁵³.
 TEST(ReducedPhase, EqualsTheExactProductModuloTwoPiUpToTheLargestPhase) {
-  const __float128 two_pi = two_pi_binary128();
+  const __float128 two_pi = swell::test::two_pi_binary128();
   std::uint64_t state = 12345;
   auto uniform = [&] {
     state = state * 6364136223846793005ULL + 1442695040888963407ULL;

@@ -11,6 +11,7 @@
 #include "swell/impls/synthesizer.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/validation/periodogram.hpp"
+#include "test_support.hpp"
 
 namespace {
 
@@ -276,14 +277,7 @@ TEST(Synthesizer, PhasesStayExactAtLateTimes) {
   const double t = 1e9;
   const FieldFrame frame = Synthesizer(c, {"fftw", Precision::f64}).frame(t);
   const auto& h = frame.fields.at(Field::height);
-  // 2π in binary128 by Machin's formula π = 16 atan(1/5) − 4 atan(1/239), independent of the
-  // constants reference/phase.hpp splits 2π into.
-  auto arctan_inverse = [](int x) {
-    __float128 sum = 0, power = __float128(1) / x;
-    for (int k = 0; k < 60; ++k, power /= __float128(x) * x) sum += (k % 2 ? -power : power) / (2 * k + 1);
-    return sum;
-  };
-  const __float128 two_pi = 2 * (16 * arctan_inverse(5) - 4 * arctan_inverse(239));
+  const __float128 two_pi = swell::test::two_pi_binary128();
   std::vector<double> direct(h.size(), 0.0);
   for (int j = 0; j < 8; ++j) {
     for (int i = 0; i < 8; ++i) {

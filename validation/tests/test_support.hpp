@@ -14,4 +14,15 @@ inline double rel(double got, double want) {
   return got == want ? 0.0 : std::abs(got - want) / std::abs(want);
 }
 
+// 2π in binary128 (GCC's __float128) by Machin's formula π = 16 atan(1/5) − 4 atan(1/239):
+// an oracle for phases independent of the constants reference/phase.hpp splits 2π into.
+inline __float128 two_pi_binary128() {
+  auto arctan_inverse = [](int x) {
+    __float128 sum = 0, power = __float128(1) / x;
+    for (int k = 0; k < 60; ++k, power /= __float128(x) * x) sum += (k % 2 ? -power : power) / (2 * k + 1);
+    return sum;
+  };
+  return 2 * (16 * arctan_inverse(5) - 4 * arctan_inverse(239));
+}
+
 }  // namespace swell::test

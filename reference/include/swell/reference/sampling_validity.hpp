@@ -49,8 +49,6 @@ struct SamplingSummary {
   double slope_variance = 0;          // max over x, y of Σ k_a² Ψ Δk² (1)
   double displacement_variance = 0;   // max over x, y of Σ (k_a/|k|)² Ψ Δk² (m², before λ)
   double strain_variance = 0;         // max over the ∂D terms of Σ (k_a k_b/|k|)² Ψ Δk² (before λ)
-  double omega_max = 0;               // ω of the largest |k|, rad/s
-  double time_max = 0;                // largest |t| over the case's frames, s
 };
 
 // Evaluates Ψ once per wave vector of the case's grid (0.12 µs each: 0.03 s at 512², 0.5 s at
