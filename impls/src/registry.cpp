@@ -15,6 +15,9 @@ const std::vector<std::pair<std::string, Factory>>& factories() {
       {"radix2", make_radix2_backend},
       {"fftw", make_fftw_backend},
       {"null", make_null_backend},
+#ifdef SWELL_HAVE_VULKAN
+      {"vulkan", make_vulkan_backend},
+#endif
   };
   return table;
 }
@@ -60,10 +63,23 @@ std::unique_ptr<Backend> make_backend(const std::string& name_and_options) {
           throw InvalidInput("backend option threads='" + value + "' must be a whole number 1…256");
         }
         options.threads = threads;
+      } else if (key == "device") {
+        std::size_t used = 0;
+        int device = -1;
+        try {
+          device = std::stoi(value, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != value.size() || value.empty() || device < 0 || device > 255) {
+          throw InvalidInput("backend option device='" + value +
+                             "' must be a Vulkan device index 0…255 (see `vulkaninfo --summary`)");
+        }
+        options.device = device;
       } else {
         throw InvalidInput("unknown backend option '" + item + "' in '" + name_and_options +
                            "'; valid: planner=estimate|measure|patient|exhaustive (fftw), "
-                           "threads=N (fftw, radix2)");
+                           "threads=N (fftw, radix2), device=N (vulkan)");
       }
       if (comma == std::string::npos) break;
       start = comma + 1;

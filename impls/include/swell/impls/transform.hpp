@@ -111,6 +111,7 @@ struct Capabilities {
 struct BackendOptions {
   std::string planner;   // fftw: estimate | measure | patient | exhaustive
   int threads = 1;
+  int device = -1;       // vulkan: index of the Vulkan device; −1 chooses (docs/vulkan.md)
 };
 
 class Backend {

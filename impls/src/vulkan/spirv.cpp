@@ -1,0 +1,17 @@
+// The SPIR-V of impls/shaders, compiled by glslc at build time (impls/CMakeLists.txt) into
+// comma-separated words: no shader compiler at run time.
+#include "context.hpp"
+
+namespace swell::impls::vk {
+
+const std::vector<std::uint32_t>& fft_lines_spirv(Precision precision) {
+  static const std::vector<std::uint32_t> fp32 = {
+#include "fft_lines_fp32.inc"
+  };
+  static const std::vector<std::uint32_t> fp64 = {
+#include "fft_lines_fp64.inc"
+  };
+  return precision == Precision::f64 ? fp64 : fp32;
+}
+
+}  // namespace swell::impls::vk
