@@ -15,6 +15,7 @@
 #include "swell/impls/transform.hpp"
 #include "swell/validation/fft_invariants.hpp"
 #include "swell/validation/transform_checks.hpp"
+#include "vulkan_test_support.hpp"
 
 namespace {
 
@@ -26,6 +27,25 @@ using swell::validation::transform_error_bound;
 // Test backends with fast planning; the MEASURE planner gets its own test below.
 std::string configured(const std::string& name) {
   return name == "fftw" ? "fftw:planner=estimate" : name;
+}
+
+// A backend that cannot start here (vulkan without a device) says why; its name is left out of
+// the parameterized suites and Registry.EveryBackendStartsOrSaysWhy reports it.
+std::string why_unavailable(const std::string& name) {
+  try {
+    make_backend(configured(name));
+    return "";
+  } catch (const UnsupportedTransform& e) {
+    return e.what();
+  }
+}
+
+std::vector<std::string> available_backends() {
+  std::vector<std::string> names;
+  for (const auto& name : backend_names()) {
+    if (why_unavailable(name).empty()) names.push_back(name);
+  }
+  return names;
 }
 
 struct Case {
@@ -64,7 +84,7 @@ std::vector<std::pair<int, int>> sizes_for(const Capabilities& caps) {
 
 std::vector<Case> accuracy_cases() {
   std::vector<Case> cases;
-  for (const auto& name : backend_names()) {
+  for (const auto& name : available_backends()) {
     const auto backend = make_backend(configured(name));
     const auto caps = backend->capabilities();
     if (!caps.exact) continue;
@@ -121,7 +141,7 @@ struct InvariantCase {
 
 std::vector<InvariantCase> invariant_cases() {
   std::vector<InvariantCase> cases;
-  for (const auto& name : backend_names()) {
+  for (const auto& name : available_backends()) {
     const auto caps = make_backend(configured(name))->capabilities();
     if (!caps.exact) continue;
     for (Precision p : {Precision::f32, Precision::f64}) {
@@ -340,8 +360,79 @@ TEST_P(EveryBackend, OutOfPlaceLeavesInputBitIdenticalForEveryKind) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Registry, EveryBackend, testing::ValuesIn(backend_names()),
+// One input mode lands in exactly one output bin: e^(+2πi(a n/nx + b m/ny)) transforms forward
+// to nx·ny at (a, b) and inverse to nx·ny at (−a, −b) (e^(−…) the other way round), zero
+// elsewhere. A transposed output (nx ≠ ny), a conjugated one (a ≠ −a mod n) or a wrong sign
+// convention puts the peak in another bin; round trips and Parseval cannot see these.
+TEST_P(EveryBackend, PlaneWaveLandsInItsBinPerAxisAndSign) {
+  const auto backend = make_backend(configured(GetParam()));
+  if (!backend->capabilities().exact) GTEST_SKIP() << GetParam() << " copies instead of transforming";
+  for (auto [nx, ny] : {std::pair{16, 8}, std::pair{64, 1}}) {
+    for (Precision precision : backend->capabilities().precisions) {
+      if (precision == Precision::f80) continue;
+      for (Direction direction : {Direction::forward, Direction::inverse}) {
+        for (int sign : {+1, -1}) {
+          for (auto [a, b] : {std::pair{3, 0}, std::pair{0, ny > 1 ? 3 : 0}}) {
+            if (a == 0 && b == 0) continue;
+            TransformSpec spec;
+            spec.nx = nx;
+            spec.ny = ny;
+            spec.direction = direction;
+            spec.precision = Precision::f64;
+            std::vector<std::complex<double>> in(std::size_t(nx) * ny), out(in.size());
+            const long double two_pi = 6.283185307179586476925286766559005768L;
+            for (int m = 0; m < ny; ++m) {
+              for (int n = 0; n < nx; ++n) {
+                const long double angle = sign * two_pi * ((long double)(a * n) / nx + (long double)(b * m) / ny);
+                in[std::size_t(m) * nx + n] = {double(std::cos(angle)), double(std::sin(angle))};
+              }
+            }
+            // Run in the precision under test, compare in double.
+            spec.precision = precision;
+            const auto plan = backend->plan(spec);
+            if (precision == Precision::f32) {
+              std::vector<std::complex<float>> in32(in.begin(), in.end()), out32(in.size());
+              plan->execute(static_cast<const void*>(in32.data()), static_cast<void*>(out32.data()));
+              out.assign(out32.begin(), out32.end());
+            } else {
+              plan->execute(static_cast<const void*>(in.data()), static_cast<void*>(out.data()));
+            }
+            const int s = direction == Direction::forward ? sign : -sign;
+            const int peak_n = ((s * a) % nx + nx) % nx, peak_m = ((s * b) % ny + ny) % ny;
+            const double total = double(nx) * ny;
+            // The bound is on the error's L2 norm relative to the output's, N here; no bin's
+            // error exceeds the norm.
+            const double tolerance = total * transform_error_bound(spec);
+            for (int m = 0; m < ny; ++m) {
+              for (int n = 0; n < nx; ++n) {
+                const std::complex<double> want = (n == peak_n && m == peak_m) ? total : 0.0;
+                ASSERT_LE(std::abs(out[std::size_t(m) * nx + n] - want), tolerance)
+                    << spec.describe() << ", mode (" << a << ", " << b << ") sign " << sign
+                    << ": bin (" << n << ", " << m << ") holds " << out[std::size_t(m) * nx + n]
+                    << ", the mode belongs at (" << peak_n << ", " << peak_m << ")";
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Registry, EveryBackend, testing::ValuesIn(available_backends()),
                          [](const testing::TestParamInfo<std::string>& info) { return info.param; });
+
+// Every registered backend starts here, or (vulkan without a device, which is not an error)
+// says why — and SWELL_REQUIRE_VULKAN=1 makes that a failure too.
+TEST(Registry, EveryBackendStartsOrSaysWhy) {
+  for (const auto& name : backend_names()) {
+    const std::string why = why_unavailable(name);
+    if (why.empty()) continue;
+    EXPECT_NE(why.find(name), std::string::npos) << why;
+    if (name != "vulkan") ADD_FAILURE() << why;
+    else SWELL_SKIP_WITHOUT_VULKAN(why);
+  }
+}
 
 // ------------------------------------------------------------------ registry and FFTW options
 
