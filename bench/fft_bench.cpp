@@ -18,6 +18,7 @@
 
 #include "bench_support.hpp"
 #include "swell/impls/transform.hpp"
+#include "vkfft_anchor.hpp"
 
 namespace {
 
@@ -97,6 +98,7 @@ void register_all() {
       }
     }
   }
+  swell::bench::register_vkfft_benchmarks();
 }
 
 }  // namespace
