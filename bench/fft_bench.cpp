@@ -1,7 +1,13 @@
-// 2-D transform speed of every backend: fft2d/<kind>/<impl>/<precision>/<N> for N = 64 … 4096,
-// fp32 and fp64, c2c inverse ("c2c") and c2r. Planning (FFTW_MEASURE: about 1 s at 2048²) is
-// done before timing and reported as the plan_seconds counter. Counters: GFLOP/s by the usual
-// convention (5 N² log2 N² per complex transform, half for c2r) and bytes/s (input + output).
+// 2-D transform speed of every backend: fft2d/<kind>/<impl>/<precision>/<N>/real_time for
+// N = 64 … 4096 (vulkan from 16), fp32 and fp64, c2c inverse ("c2c") and c2r, and the anchor
+// fft2d/c2c/vkfft/fp32/<N> (vkfft_anchor.cpp). Wall-clock time (real_time, which Google
+// Benchmark appends to the name): a device backend's host thread sleeps on a fence, and a
+// threaded backend's CPU time adds its threads'. Planning (FFTW_MEASURE: about 1 s at 2048²; a
+// vulkan plan compiles its pipelines) is done before timing and reported as plan_seconds.
+// Counters: GFLOP/s by benchFFT's convention (5 N² log2 N² per complex transform, half for
+// c2r) and bytes/s (input + output); for vulkan, gearshifft's phases: device_seconds (the
+// transform's timestamps on the device, mean per iteration) and upload_seconds and
+// download_seconds (host ↔ device copies of the input and output, mean of 3 host executions).
 //
 //   build/bench/swell_fft_bench --benchmark_format=json --benchmark_out=fft.json
 //   SWELL_BENCH_IMPLS=radix2,fftw build/bench/swell_fft_bench --benchmark_filter=c2c/.*/fp32
@@ -18,6 +24,9 @@
 
 #include "bench_support.hpp"
 #include "swell/impls/transform.hpp"
+#ifdef SWELL_HAVE_VULKAN
+#include "swell/impls/vulkan.hpp"
+#endif
 #include "vkfft_anchor.hpp"
 
 namespace {
@@ -68,9 +77,29 @@ void run(benchmark::State& state, const std::string& impl, TransformSpec spec) {
     }
     in->upload(bytes.data(), bytes.size());
   }
-  for (auto _ : state) {
-    plan->execute(*in, *out);
-    benchmark::ClobberMemory();
+#ifdef SWELL_HAVE_VULKAN
+  if (backend->name() == "vulkan") {
+    double device_seconds = 0;
+    for (auto _ : state) {
+      device_seconds += vulkan_execute_timed(*plan, *in, *out).compute_seconds;
+    }
+    state.counters["device_seconds"] = device_seconds / double(state.iterations());
+    std::vector<unsigned char> host_in(spec.input_bytes()), host_out(spec.output_bytes());
+    double upload = 0, download = 0;
+    for (int repeat = 0; repeat < 3; ++repeat) {
+      const auto t = vulkan_execute_timed(*plan, host_in.data(), host_out.data());
+      upload += t.upload_seconds / 3;
+      download += t.download_seconds / 3;
+    }
+    state.counters["upload_seconds"] = upload;
+    state.counters["download_seconds"] = download;
+  } else
+#endif
+  {
+    for (auto _ : state) {
+      plan->execute(*in, *out);
+      benchmark::ClobberMemory();
+    }
   }
   const double n2 = double(spec.nx) * spec.ny;
   const double flops = (spec.kind == Kind::c2c ? 5.0 : 2.5) * n2 * std::log2(n2);
@@ -83,7 +112,7 @@ void register_all() {
   for (const auto& impl : implementations()) {
     for (Kind kind : {Kind::c2c, Kind::c2r}) {
       for (Precision precision : {Precision::f32, Precision::f64}) {
-        for (int n = 64; n <= 4096; n *= 2) {
+        for (int n = impl.rfind("vulkan", 0) == 0 ? 16 : 64; n <= 4096; n *= 2) {
           if (impl == "naive" && n > 128) continue;  // O(N³) per 2-D transform: minutes beyond
           TransformSpec spec;
           spec.nx = spec.ny = n;
@@ -93,7 +122,8 @@ void register_all() {
           const std::string name = "fft2d/" + to_string(kind) + "/" + impl + "/" +
                                    to_string(precision) + "/" + std::to_string(n);
           benchmark::RegisterBenchmark(name.c_str(), run, impl, spec)
-              ->Unit(benchmark::kMillisecond);
+              ->Unit(benchmark::kMillisecond)
+              ->UseRealTime();
         }
       }
     }

@@ -22,10 +22,14 @@ constexpr std::uint32_t kInverse = 1, kRealInput = 2, kHermitian = 4, kRealOutpu
 
 std::uint32_t log2_of(std::uint32_t n) { return std::uint32_t(std::countr_zero(n)); }
 
-// Points of one precision's complex numbers that fit the device's shared memory.
+// The longest line one pass holds: its complex numbers in shared memory, 8 per invocation.
 std::uint32_t shared_points(const Context& context, Precision precision) {
-  return std::bit_floor(context.limits().maxComputeSharedMemorySize /
-                        std::uint32_t(2 * real_size(precision)));
+  const auto& limits = context.limits();
+  const std::uint32_t invocations =
+      std::min(limits.maxComputeWorkGroupInvocations, limits.maxComputeWorkGroupSize[0]);
+  return std::bit_floor(std::min(limits.maxComputeSharedMemorySize /
+                                     std::uint32_t(2 * real_size(precision)),
+                                 8 * invocations));
 }
 
 }  // namespace
@@ -237,32 +241,20 @@ void FftProgram::add_line_pass(std::uint32_t n, std::uint32_t lines_lo, std::uin
   const std::uint32_t capacity = shared_points(*context_, spec_.precision);
   // Lines per workgroup: enough for ~2048 points (fewer dispatched workgroups and wider tiles
   // of columns), at least 8 points (a thread's registers), never beyond shared memory.
-  std::uint32_t lines = std::max(1u, std::min(2048u, capacity) / n);
+  static const std::uint32_t target = std::getenv("SWELL_VK_POINTS") ? std::atoi(std::getenv("SWELL_VK_POINTS")) : 2048;
+  std::uint32_t lines = std::max(1u, std::min(target, capacity) / n);
   lines = std::min(lines, std::bit_ceil(lines_lo));
   lines = std::max(lines, std::max(1u, 8u / n));
-  // Threads: 8 points each (GROUPS = 1) on a GPU; on a CPU device (lavapipe runs a workgroup on
-  // one thread, barriers as coroutine switches) up to 4 groups of 8, fewer invocations.
-  std::uint32_t points = n * lines;
-  std::uint32_t groups = context_->is_cpu() ? std::min(4u, std::max(1u, points / 64)) : 1u;
-  std::uint32_t threads = points / (8 * groups);
+  // Threads: 8 points each (one radix-8 butterfly a stage); lines fit by line_capacity().
+  const std::uint32_t threads = n * lines / 8;
   const std::uint32_t max_threads =
       std::min(limits.maxComputeWorkGroupInvocations, limits.maxComputeWorkGroupSize[0]);
-  while (threads > max_threads && groups < 4) {
-    groups *= 2;
-    threads /= 2;
-  }
-  while (threads > max_threads && lines > 1) {
-    lines /= 2;
-    points /= 2;
-    threads /= 2;
-  }
   if (threads > max_threads || threads == 0) {
-    throw UnsupportedTransform(fmt::format("vulkan: {}: a {}-point line needs {} invocations, "
-                                           "the device allows {}",
-                                           spec_.describe(), n, threads, max_threads));
+    throw InternalError(fmt::format("vulkan: {}: a {}-point line would need {} invocations, the "
+                                    "device allows {}", spec_.describe(), n, threads, max_threads));
   }
   const std::uint32_t first_radix = n == 1 ? 1 : (log2_of(n) % 3 == 1 ? 2 : (log2_of(n) % 3 == 2 ? 4 : 8));
-  const std::vector<std::uint32_t> specialization = {threads, n, lines, first_radix, groups, n * lines};
+  const std::vector<std::uint32_t> specialization = {threads, n, lines, first_radix, n * lines};
   const auto& spirv = fft_lines_spirv(spec_.precision);
   Pass pass;
   pass.pipeline = &context_->pipeline(spec_.precision == Precision::f32 ? "fft_lines_fp32" : "fft_lines_fp64",
