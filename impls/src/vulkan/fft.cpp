@@ -239,10 +239,9 @@ void FftProgram::add_line_pass(std::uint32_t n, std::uint32_t lines_lo, std::uin
                                std::uint32_t destination_batch, int split_twiddles) {
   const auto& limits = context_->limits();
   const std::uint32_t capacity = shared_points(*context_, spec_.precision);
-  // Lines per workgroup: enough for ~2048 points (fewer dispatched workgroups and wider tiles
-  // of columns), at least 8 points (a thread's registers), never beyond shared memory.
-  static const std::uint32_t target = std::getenv("SWELL_VK_POINTS") ? std::atoi(std::getenv("SWELL_VK_POINTS")) : 2048;
-  std::uint32_t lines = std::max(1u, std::min(target, capacity) / n);
+  // Lines per workgroup: enough for ~1024 points (tiles of columns 8 wide or more up to 128;
+  // lavapipe's threads share out more, smaller workgroups better than fewer larger ones), at least 8 points (a thread's registers), never beyond shared memory.
+  std::uint32_t lines = std::max(1u, std::min(1024u, capacity) / n);
   lines = std::min(lines, std::bit_ceil(lines_lo));
   lines = std::max(lines, std::max(1u, 8u / n));
   // Threads: 8 points each (one radix-8 butterfly a stage); lines fit by line_capacity().
@@ -254,14 +253,19 @@ void FftProgram::add_line_pass(std::uint32_t n, std::uint32_t lines_lo, std::uin
                                     "device allows {}", spec_.describe(), n, threads, max_threads));
   }
   const std::uint32_t first_radix = n == 1 ? 1 : (log2_of(n) % 3 == 1 ? 2 : (log2_of(n) % 3 == 2 ? 4 : 8));
-  const std::vector<std::uint32_t> specialization = {threads, n, lines, first_radix, n * lines};
-  const auto& spirv = fft_lines_spirv(spec_.precision);
-  Pass pass;
-  pass.pipeline = &context_->pipeline(spec_.precision == Precision::f32 ? "fft_lines_fp32" : "fft_lines_fp64",
-                                      spirv, specialization, 4, 2, sizeof(PassConstants));
   c.lines_lo = lines_lo;
   c.in_batch = per_batch_ ? 0 : source_batch;
   c.out_batch = per_batch_ ? 0 : destination_batch;
+  // The shape, then the pass's addressing and flags: all specialization constants (the
+  // shader's constant_id order), so each pass is its own pipeline with its strides folded in.
+  std::vector<std::uint32_t> specialization = {threads, n, lines, first_radix, n * lines};
+  static_assert(sizeof(PassConstants) == 15 * sizeof(std::uint32_t));
+  const auto* words = reinterpret_cast<const std::uint32_t*>(&c);
+  specialization.insert(specialization.end(), words, words + 15);
+  const auto& spirv = fft_lines_spirv(spec_.precision);
+  Pass pass;
+  pass.pipeline = &context_->pipeline(spec_.precision == Precision::f32 ? "fft_lines_fp32" : "fft_lines_fp64",
+                                      spirv, specialization, 4, 2, 0);
   pass.constants = c;
   pass.source = source;
   pass.destination = destination;
@@ -365,8 +369,6 @@ void FftProgram::record(VkCommandBuffer commands, Workspace& w, VkBuffer in, VkB
     const Pass& pass = passes_[p];
     Context::barrier(commands);
     vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline->pipeline);
-    vkCmdPushConstants(commands, pass.pipeline->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                       sizeof(PassConstants), &pass.constants);
     const int dispatches = per_batch_ ? spec_.howmany : 1;
     for (int b = 0; b < dispatches; ++b) {
       // The transforms of a batch touch disjoint windows, but synchronization validation

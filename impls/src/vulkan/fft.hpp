@@ -10,7 +10,7 @@
 
 namespace swell::impls::vk {
 
-// The push constants of impls/shaders/fft_lines.comp, in its order.
+// The specialization constants 5 … 19 of impls/shaders/fft_lines.comp, in its order.
 struct PassConstants {
   std::uint32_t in_lo = 0, in_lo_position = 0, in_hi = 0, in_element = 0, in_batch = 0;
   std::uint32_t out_lo = 0, out_lo_position = 0, out_hi = 0, out_element = 0, out_batch = 0;
