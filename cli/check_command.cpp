@@ -3,6 +3,7 @@
 // Runs swell's validations, prints tables and writes <report-dir>/check_<what>.{json,md}.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
@@ -29,9 +30,23 @@ struct CheckOptions {
 
 int run_check(const CheckOptions& o) {
   const bool all = o.what == "all";
-  std::vector<std::string> impls =
-      o.impl == "all" ? impls::backend_names() : std::vector<std::string>{o.impl};
-  for (const auto& name : impls) impls::make_backend(name);  // unknown names: exit 2 up front
+  // Unknown names exit 2 up front. Of "all", a backend that cannot start here (vulkan without
+  // a device) is left out, saying why; asked for by name, it is an error (exit 2).
+  std::vector<std::string> impls;
+  nlohmann::json unavailable = nlohmann::json::object();
+  for (const auto& name : o.impl == "all" ? impls::backend_names() : std::vector<std::string>{o.impl}) {
+    try {
+      impls::make_backend(name);
+      impls.push_back(name);
+    } catch (const impls::UnsupportedTransform& e) {
+      if (o.impl != "all") throw;
+      std::cerr << "skipping " << name << ": " << e.what() << "\n";
+      unavailable[name] = e.what();
+    }
+  }
+  const bool with_vulkan = std::find(impls.begin(), impls.end(), "vulkan") != impls.end();
+  const std::string vulkan_device = with_vulkan ? vulkan_device_line() : "";
+  if (with_vulkan) std::cerr << "vulkan runs on: " << vulkan_device << "\n";
 
   std::vector<validation::CheckResult> checks;
   if (o.what == "reference" || all) {
@@ -72,12 +87,15 @@ int run_check(const CheckOptions& o) {
                                   [](const auto& t) { return t.pass; }) &&
                       std::all_of(ocean.begin(), ocean.end(), [](const auto& r) { return r.passed(); });
   document["pass"] = passed;
+  if (with_vulkan) document["vulkan_device"] = vulkan_device;
+  if (!unavailable.empty()) document["unavailable_backends"] = unavailable;
 
   const std::string title = "swell check " + o.what;
   std::string markdown = validation::render_markdown(checks, title);
   if (!transforms.empty()) {
-    markdown += "\n## Transform accuracy against the long-double oracle\n\n```\n" +
-                validation::render_transform_table(transforms) + "```\n";
+    markdown += "\n## Transform accuracy against the long-double oracle\n\n" +
+                (with_vulkan ? "vulkan runs on: " + vulkan_device + "\n\n" : std::string()) +
+                "```\n" + validation::render_transform_table(transforms) + "```\n";
   }
   if (!ocean.empty()) {
     markdown += fmt::format("\n## Ocean surfaces: every check on the built-in cases ({}², α = {:g} per "
@@ -89,7 +107,13 @@ int run_check(const CheckOptions& o) {
   if (!o.json.empty()) write_json(o.json, document);
   if (o.json != "-") {
     if (!checks.empty()) std::cout << validation::render_table(checks);
-    if (!transforms.empty()) std::cout << "\n" << validation::render_transform_table(transforms);
+    if (!transforms.empty()) {
+      if (with_vulkan) std::cout << "\nvulkan runs on: " << vulkan_device;
+      std::cout << "\n" << validation::render_transform_table(transforms);
+    }
+    for (const auto& [name, why] : unavailable.items()) {
+      std::cout << "not checked: " << name << " (" << why.get<std::string>() << ")\n";
+    }
     if (!ocean.empty()) std::cout << "\n" << validation::render_ocean_matrix(ocean);
     std::cout << fmt::format("{}\nreport: {}.{{json,md}}\n", passed ? "PASS" : "FAIL", stem);
   }
@@ -104,6 +128,7 @@ Action add_check_command(CLI::App& app) {
                  "which validations: reference, transforms, ocean, or all (default)")
       ->check(CLI::IsMember({"reference", "transforms", "ocean", "all"}));
   app.add_option("--impl", o->impl, "transform backend to check, or all (default)");
+  app.footer([] { return backends_summary(); });
   app.add_option("--json", o->json, "also write the results as JSON to FILE, or - for stdout");
   app.add_option("--report-dir", o->report_dir, "where the JSON and Markdown reports go")
       ->capture_default_str();

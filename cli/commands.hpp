@@ -25,6 +25,13 @@ Action add_gate_command(CLI::App& app);
 // Writes JSON to FILE, or to standard output for "-".
 void write_json(const std::string& destination, const nlohmann::json& document);
 
+// The registered transform backends and, where the build has vulkan, the Vulkan device and
+// driver it runs on (or why it cannot run): "--help" and `swell check transforms` print it.
+std::string backends_summary();
+// Where the build has vulkan: "llvmpipe (…), CPU, driver …" or the reason there is none;
+// empty otherwise.
+std::string vulkan_device_line();
+
 // A CLI11 check for --model (spectra) and --spreading whose refusal teaches: a spreading given
 // as a spectrum (or phillips as a spreading) says where it goes, a misspelling names the
 // nearest model (reference::unknown_model_message).

@@ -9,7 +9,11 @@
 #include <new>
 
 #include "commands.hpp"
+#include "swell/impls/transform.hpp"
 #include "swell/reference/errors.hpp"
+#ifdef SWELL_HAVE_VULKAN
+#include "swell/impls/vulkan.hpp"
+#endif
 
 namespace swell::cli {
 
@@ -23,12 +27,31 @@ void write_json(const std::string& destination, const nlohmann::json& document) 
   if (!file) throw InvalidInput("cannot write JSON to '" + destination + "'");
 }
 
+std::string vulkan_device_line() {
+#ifdef SWELL_HAVE_VULKAN
+  return impls::vulkan_device_description("vulkan");
+#else
+  return "";
+#endif
+}
+
+std::string backends_summary() {
+  std::string names;
+  for (const auto& name : impls::backend_names()) names += (names.empty() ? "" : ", ") + name;
+  std::string text = "Transform backends (--impl): " + names + ".";
+  const std::string device = vulkan_device_line();
+  if (!device.empty()) text += "\nvulkan runs on: " + device;
+  return text;
+}
+
 }  // namespace swell::cli
 
 int main(int argc, char** argv) {
   CLI::App app{"swell: checks ocean-wave spectra, surfaces and FFTs against physics and each other"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "swell 0.1.0");
+  // Opens the Vulkan device only when help is printed.
+  app.footer([] { return swell::cli::backends_summary(); });
   std::map<std::string, swell::cli::Action> actions;
   auto* spectrum = app.add_subcommand("spectrum", "evaluate a wave spectrum and its moments");
   actions["spectrum"] = swell::cli::add_spectrum_command(*spectrum);
