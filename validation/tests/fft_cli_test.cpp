@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "swell/validation/npy.hpp"
+#include "vulkan_test_support.hpp"
 
 namespace {
 
@@ -246,6 +247,32 @@ TEST_F(FftCli, BackendsAgree) {
       EXPECT_LT(relative_max_error(read_npy(path(impl + "_f4.npy")).values<cf>(), reference_r32), bound32);
     }
   }
+}
+
+// `swell fft --impl vulkan` on .npy files, every kind and precision, against fftw (the bound of
+// BackendsAgree: two transforms' errors of a few ε log2 N each).
+TEST_F(FftCli, VulkanAgreesWithFftwOnNpyFiles) {
+  const std::size_t ny = 16, nx = 32;
+  const double bound64 = 8 * kEps64 * std::log2(nx * ny), bound32 = 8 * kEps32 * std::log2(nx * ny);
+  const auto c16 = save("c16.npy", {ny, nx}, random_values<cd>(nx * ny, 4));
+  const auto c8 = save("c8.npy", {ny, nx}, random_values<cf>(nx * ny, 5));
+  const auto f4 = save("f4.npy", {ny, nx}, random_values<float>(nx * ny, 7));
+  const auto probe = swell("fft --impl vulkan --in " + c8 + " --out " + path("probe.npy"));
+  if (probe.exit_code == 2 && contains(probe.output, "vulkan: ")) SWELL_SKIP_WITHOUT_VULKAN(probe.output);
+  for (const std::string impl : {"vulkan", "fftw"}) {
+    fft("--impl " + impl + " --in " + c16 + " --out " + path(impl + "_c16.npy"));
+    fft("--impl " + impl + " --inverse --in " + c8 + " --out " + path(impl + "_c8.npy"));
+    fft("--impl " + impl + " --in " + f4 + " --out " + path(impl + "_f4.npy"));
+    fft("--impl " + impl + " --c2r --in " + path(impl + "_f4.npy") + " --out " + path(impl + "_back.npy"));
+  }
+  EXPECT_LT(relative_max_error(read_npy(path("vulkan_c16.npy")).values<cd>(),
+                               read_npy(path("fftw_c16.npy")).values<cd>()), bound64);
+  EXPECT_LT(relative_max_error(read_npy(path("vulkan_c8.npy")).values<cf>(),
+                               read_npy(path("fftw_c8.npy")).values<cf>()), bound32);
+  EXPECT_LT(relative_max_error(read_npy(path("vulkan_f4.npy")).values<cf>(),
+                               read_npy(path("fftw_f4.npy")).values<cf>()), bound32);
+  EXPECT_LT(relative_max_error(read_npy(path("vulkan_back.npy")).values<float>(),
+                               read_npy(path("fftw_back.npy")).values<float>()), 2 * bound32);
 }
 
 TEST_F(FftCli, JsonReportsTheTransform) {
