@@ -2,9 +2,9 @@
 // One pass of swell's Vulkan FFT (docs/vulkan.md): a batch of 1-D transforms of N points along
 // "lines" of a 2-D array, each line held whole in shared memory, transformed there by Stockham
 // autosort stages (Bainville's OpenCL FFT formulation: stage p reads x[i + j·N/R], writes
-// x[(i − k)R + k + q·p], k = i mod p) of radix 8 after one first stage of radix 2, 4 or 8; the
+// x[(i − k)R + k + q·p], k = i mod p) of radix 16 after one first stage of radix 2, 4, 8 or 16; the
 // first stage reads the array and the last writes it, so a line crosses shared memory once
-// per stage boundary. Each thread holds 8 points in registers per stage; two barriers a stage.
+// per stage boundary. Each thread holds 16 points in registers per stage; two barriers a stage.
 //
 // Addressing (push constants; strides in elements, complex or real): line (lo, hi) of batch b,
 // element e lies at  b·batch + hi·hi_stride + lo·lo_stride + e·element_stride.  The x axis has
@@ -31,11 +31,14 @@
 layout(local_size_x_id = 0) in;
 layout(constant_id = 1) const uint N = 64;          // points per line
 layout(constant_id = 2) const uint LINES = 1;       // lines per workgroup
-layout(constant_id = 3) const uint FIRST_RADIX = 8; // 1 (N = 1), 2, 4 or 8
+layout(constant_id = 3) const uint FIRST_RADIX = 16; // 1 (N = 1), 2, 4, 8 or 16
 layout(constant_id = 4) const uint SHARED_POINTS = 64;  // N · LINES
 
-layout(set = 0, binding = 0) readonly buffer Source { real src[]; };
-layout(set = 0, binding = 1) writeonly buffer Destination { real dst[]; };
+// Each array is bound once and read as complex numbers or (real data) as reals.
+layout(set = 0, binding = 0) readonly buffer Source { cplx src[]; };
+layout(set = 0, binding = 0) readonly buffer RealSource { real src_real[]; };
+layout(set = 0, binding = 1) writeonly buffer Destination { cplx dst[]; };
+layout(set = 0, binding = 1) writeonly buffer RealDestination { real dst_real[]; };
 layout(set = 0, binding = 2) readonly buffer LineTwiddles { cplx line_twiddle[]; };
 layout(set = 0, binding = 3) readonly buffer SplitTwiddles { cplx split_twiddle[]; };
 
@@ -77,13 +80,12 @@ cplx rotate(cplx a) { return has(INVERSE) ? cplx(-a.y, a.x) : cplx(a.y, -a.x); }
 cplx load(uint b, uint hi, uint lo, uint e) {
   const uint p = lo * IN_LO_POSITION + e * IN_ELEMENT;  // in the row
   const uint base = b * IN_BATCH + hi * IN_HI + lo * IN_LO - lo * IN_LO_POSITION;
-  if (has(REAL_INPUT)) return cplx(src[base + p], 0);
+  if (has(REAL_INPUT)) return cplx(src_real[base + p], 0);
   if (has(HERMITIAN) && 2u * p > ROW) {
-    const uint a = 2u * (base + ROW - p);
-    return cplx(src[a], -src[a + 1u]);
+    const cplx mirror = src[base + ROW - p];
+    return cplx(mirror.x, -mirror.y);
   }
-  const uint a = 2u * (base + p);
-  return cplx(src[a], src[a + 1u]);
+  return src[base + p];
 }
 
 void store(uint b, uint hi, uint lo, uint e, cplx v) {
@@ -91,12 +93,10 @@ void store(uint b, uint hi, uint lo, uint e, cplx v) {
   const uint base = b * OUT_BATCH + hi * OUT_HI + lo * OUT_LO - lo * OUT_LO_POSITION;
   if (has(LIMIT) && p >= WRITE_LIMIT) return;
   if (has(REAL_OUTPUT)) {
-    dst[base + p] = v.x;
+    dst_real[base + p] = v.x;
     return;
   }
-  const uint a = 2u * (base + p);
-  dst[a] = v.x;
-  dst[a + 1u] = v.y;
+  dst[base + p] = v;
 }
 
 // In-register DFTs of 2, 4 and 8 points in the pass's direction, on named values rather than
@@ -130,8 +130,31 @@ void dft8(inout cplx x0, inout cplx x1, inout cplx x2, inout cplx x3, inout cplx
   x3 = e3 + o3; x7 = e3 - o3;
 }
 
-// Every thread holds 8 points of a stage: one radix-8 butterfly, two radix-4 or four radix-2.
-cplx v0, v1, v2, v3, v4, v5, v6, v7;
+// dft16 as 4 × 4 (n = 4 n1 + n2, k = k1 + 4 k2): DFT4 over n1, twiddles w16^(n2 k1), DFT4
+// over n2. X[k] ends in x_{4 (k mod 4) + k div 4}; the stages read it back in that order.
+void dft16(inout cplx x0, inout cplx x1, inout cplx x2, inout cplx x3, inout cplx x4,
+           inout cplx x5, inout cplx x6, inout cplx x7, inout cplx x8, inout cplx x9,
+           inout cplx x10, inout cplx x11, inout cplx x12, inout cplx x13, inout cplx x14,
+           inout cplx x15) {
+  dft4(x0, x4, x8, x12);
+  dft4(x1, x5, x9, x13);
+  dft4(x2, x6, x10, x14);
+  dft4(x3, x7, x11, x15);
+  const uint s = N / 16u;  // w16^m = twiddle(m·N/16)
+  const cplx w1 = twiddle(s), w2 = twiddle(2u * s), w3 = twiddle(3u * s);
+  const cplx w6 = twiddle(6u * s), w9 = twiddle(9u * s);
+  x5 = mul(x5, w1); x6 = mul(x6, w2); x7 = mul(x7, w3);
+  x9 = mul(x9, w2); x10 = rotate(x10); x11 = mul(x11, w6);
+  x13 = mul(x13, w3); x14 = mul(x14, w6); x15 = mul(x15, w9);
+  dft4(x0, x1, x2, x3);
+  dft4(x4, x5, x6, x7);
+  dft4(x8, x9, x10, x11);
+  dft4(x12, x13, x14, x15);
+}
+
+// Every thread holds 16 points of a stage: one radix-16 butterfly, or two radix-8, four
+// radix-4 or eight radix-2 ones in the first stage.
+cplx v0, v1, v2, v3, v4, v5, v6, v7, v8, v9, v10, v11, v12, v13, v14, v15;
 
 // Which line of the workgroup and which butterfly of that line butterfly b is: lines fastest
 // where the array's lines are adjacent in memory (the y axis's columns), so that neighbouring
@@ -156,92 +179,124 @@ void put(uint l, uint e, cplx v) {
   store(gl_WorkGroupID.z, gl_WorkGroupID.y, lo, e, v);
 }
 
+// Sixteen values to the array (last stage) or to shared memory: element `first + q·stride` of
+// line l gets the q-th value.
+void write16(bool to_array, uint l, uint first, uint stride, cplx y0, cplx y1, cplx y2, cplx y3,
+             cplx y4, cplx y5, cplx y6, cplx y7, cplx y8, cplx y9, cplx y10, cplx y11,
+             cplx y12, cplx y13, cplx y14, cplx y15) {
+  if (to_array) {
+    put(l, first, y0); put(l, first + stride, y1); put(l, first + 2u * stride, y2); put(l, first + 3u * stride, y3);
+    put(l, first + 4u * stride, y4); put(l, first + 5u * stride, y5); put(l, first + 6u * stride, y6); put(l, first + 7u * stride, y7);
+    put(l, first + 8u * stride, y8); put(l, first + 9u * stride, y9); put(l, first + 10u * stride, y10); put(l, first + 11u * stride, y11);
+    put(l, first + 12u * stride, y12); put(l, first + 13u * stride, y13); put(l, first + 14u * stride, y14); put(l, first + 15u * stride, y15);
+    return;
+  }
+  const uint at = l * N + first;
+  line[at] = y0; line[at + stride] = y1; line[at + 2u * stride] = y2; line[at + 3u * stride] = y3;
+  line[at + 4u * stride] = y4; line[at + 5u * stride] = y5; line[at + 6u * stride] = y6; line[at + 7u * stride] = y7;
+  line[at + 8u * stride] = y8; line[at + 9u * stride] = y9; line[at + 10u * stride] = y10; line[at + 11u * stride] = y11;
+  line[at + 12u * stride] = y12; line[at + 13u * stride] = y13; line[at + 14u * stride] = y14; line[at + 15u * stride] = y15;
+}
+
+// Values of butterfly b (radix R < 16, `count` = 16/R of them per thread) to the array or to
+// shared memory, x[i·R + q] in the first stage.
+void put_small(bool to_array, uvec2 li, uint q, cplx v) {
+  if (to_array) put(li.x, q, v);  // the only stage: N = R, i = 0
+  else line[li.x * N + li.y * FIRST_RADIX + q] = v;
+}
+
 // The first stage (span 1, no twiddles) of radix FIRST_RADIX, read from the array itself:
 // butterfly i of a line reads x[i + j·N/R] and writes x[i·R + q] — to shared memory, or, when
 // it is the only stage (N = R), to the array.
 void first_stage() {
   const uint t = gl_LocalInvocationID.x;
   const bool last = FIRST_RADIX == N;
-  const bool in_fastest = has(SOURCE_LINE_FASTEST), out_fastest = has(DESTINATION_LINE_FASTEST);
+  const bool fastest = last ? has(DESTINATION_LINE_FASTEST) : has(SOURCE_LINE_FASTEST);
   const uint step = N / FIRST_RADIX;
-  if (FIRST_RADIX == 8u) {
-    const uvec2 li = line_and_index(t, step, last ? out_fastest : in_fastest);
+  if (FIRST_RADIX == 16u) {
+    const uvec2 li = line_and_index(t, step, fastest);
     const uint l = li.x, i = li.y;
     v0 = fetch(l, i); v1 = fetch(l, i + step); v2 = fetch(l, i + 2u * step); v3 = fetch(l, i + 3u * step);
     v4 = fetch(l, i + 4u * step); v5 = fetch(l, i + 5u * step); v6 = fetch(l, i + 6u * step); v7 = fetch(l, i + 7u * step);
-    dft8(v0, v1, v2, v3, v4, v5, v6, v7);
-    if (last) {
-      put(l, 0u, v0); put(l, 1u, v1); put(l, 2u, v2); put(l, 3u, v3);
-      put(l, 4u, v4); put(l, 5u, v5); put(l, 6u, v6); put(l, 7u, v7);
-      return;
-    }
-    const uint to = l * N + i * 8u;
-    line[to] = v0; line[to + 1u] = v1; line[to + 2u] = v2; line[to + 3u] = v3;
-    line[to + 4u] = v4; line[to + 5u] = v5; line[to + 6u] = v6; line[to + 7u] = v7;
-  } else if (FIRST_RADIX == 4u) {
-    const uvec2 a = line_and_index(2u * t, step, last ? out_fastest : in_fastest);
-    const uvec2 b = line_and_index(2u * t + 1u, step, last ? out_fastest : in_fastest);
+    v8 = fetch(l, i + 8u * step); v9 = fetch(l, i + 9u * step); v10 = fetch(l, i + 10u * step); v11 = fetch(l, i + 11u * step);
+    v12 = fetch(l, i + 12u * step); v13 = fetch(l, i + 13u * step); v14 = fetch(l, i + 14u * step); v15 = fetch(l, i + 15u * step);
+    dft16(v0, v1, v2, v3, v4, v5, v6, v7, v8, v9, v10, v11, v12, v13, v14, v15);
+    write16(last, l, last ? 0u : i * 16u, 1u, v0, v4, v8, v12, v1, v5, v9, v13, v2, v6, v10, v14, v3, v7, v11, v15);
+  } else if (FIRST_RADIX == 8u) {
+    const uvec2 a = line_and_index(2u * t, step, fastest), b = line_and_index(2u * t + 1u, step, fastest);
     v0 = fetch(a.x, a.y); v1 = fetch(a.x, a.y + step); v2 = fetch(a.x, a.y + 2u * step); v3 = fetch(a.x, a.y + 3u * step);
-    v4 = fetch(b.x, b.y); v5 = fetch(b.x, b.y + step); v6 = fetch(b.x, b.y + 2u * step); v7 = fetch(b.x, b.y + 3u * step);
-    dft4(v0, v1, v2, v3);
-    dft4(v4, v5, v6, v7);
-    if (last) {
-      put(a.x, 0u, v0); put(a.x, 1u, v1); put(a.x, 2u, v2); put(a.x, 3u, v3);
-      put(b.x, 0u, v4); put(b.x, 1u, v5); put(b.x, 2u, v6); put(b.x, 3u, v7);
-      return;
-    }
-    const uint ta = a.x * N + a.y * 4u, tb = b.x * N + b.y * 4u;
-    line[ta] = v0; line[ta + 1u] = v1; line[ta + 2u] = v2; line[ta + 3u] = v3;
-    line[tb] = v4; line[tb + 1u] = v5; line[tb + 2u] = v6; line[tb + 3u] = v7;
-  } else {
-    const bool fastest = last ? out_fastest : in_fastest;
+    v4 = fetch(a.x, a.y + 4u * step); v5 = fetch(a.x, a.y + 5u * step); v6 = fetch(a.x, a.y + 6u * step); v7 = fetch(a.x, a.y + 7u * step);
+    v8 = fetch(b.x, b.y); v9 = fetch(b.x, b.y + step); v10 = fetch(b.x, b.y + 2u * step); v11 = fetch(b.x, b.y + 3u * step);
+    v12 = fetch(b.x, b.y + 4u * step); v13 = fetch(b.x, b.y + 5u * step); v14 = fetch(b.x, b.y + 6u * step); v15 = fetch(b.x, b.y + 7u * step);
+    dft8(v0, v1, v2, v3, v4, v5, v6, v7);
+    dft8(v8, v9, v10, v11, v12, v13, v14, v15);
+    put_small(last, a, 0u, v0); put_small(last, a, 1u, v1); put_small(last, a, 2u, v2); put_small(last, a, 3u, v3);
+    put_small(last, a, 4u, v4); put_small(last, a, 5u, v5); put_small(last, a, 6u, v6); put_small(last, a, 7u, v7);
+    put_small(last, b, 0u, v8); put_small(last, b, 1u, v9); put_small(last, b, 2u, v10); put_small(last, b, 3u, v11);
+    put_small(last, b, 4u, v12); put_small(last, b, 5u, v13); put_small(last, b, 6u, v14); put_small(last, b, 7u, v15);
+  } else if (FIRST_RADIX == 4u) {
     const uvec2 a = line_and_index(4u * t, step, fastest), b = line_and_index(4u * t + 1u, step, fastest);
     const uvec2 c = line_and_index(4u * t + 2u, step, fastest), d = line_and_index(4u * t + 3u, step, fastest);
-    v0 = fetch(a.x, a.y); v1 = fetch(a.x, a.y + step); v2 = fetch(b.x, b.y); v3 = fetch(b.x, b.y + step);
-    v4 = fetch(c.x, c.y); v5 = fetch(c.x, c.y + step); v6 = fetch(d.x, d.y); v7 = fetch(d.x, d.y + step);
+    v0 = fetch(a.x, a.y); v1 = fetch(a.x, a.y + step); v2 = fetch(a.x, a.y + 2u * step); v3 = fetch(a.x, a.y + 3u * step);
+    v4 = fetch(b.x, b.y); v5 = fetch(b.x, b.y + step); v6 = fetch(b.x, b.y + 2u * step); v7 = fetch(b.x, b.y + 3u * step);
+    v8 = fetch(c.x, c.y); v9 = fetch(c.x, c.y + step); v10 = fetch(c.x, c.y + 2u * step); v11 = fetch(c.x, c.y + 3u * step);
+    v12 = fetch(d.x, d.y); v13 = fetch(d.x, d.y + step); v14 = fetch(d.x, d.y + 2u * step); v15 = fetch(d.x, d.y + 3u * step);
+    dft4(v0, v1, v2, v3); dft4(v4, v5, v6, v7); dft4(v8, v9, v10, v11); dft4(v12, v13, v14, v15);
+    put_small(last, a, 0u, v0); put_small(last, a, 1u, v1); put_small(last, a, 2u, v2); put_small(last, a, 3u, v3);
+    put_small(last, b, 0u, v4); put_small(last, b, 1u, v5); put_small(last, b, 2u, v6); put_small(last, b, 3u, v7);
+    put_small(last, c, 0u, v8); put_small(last, c, 1u, v9); put_small(last, c, 2u, v10); put_small(last, c, 3u, v11);
+    put_small(last, d, 0u, v12); put_small(last, d, 1u, v13); put_small(last, d, 2u, v14); put_small(last, d, 3u, v15);
+  } else {
+    uvec2 b[8];
+    for (uint u = 0u; u < 8u; ++u) b[u] = line_and_index(8u * t + u, step, fastest);
+    v0 = fetch(b[0].x, b[0].y); v1 = fetch(b[0].x, b[0].y + step); v2 = fetch(b[1].x, b[1].y); v3 = fetch(b[1].x, b[1].y + step);
+    v4 = fetch(b[2].x, b[2].y); v5 = fetch(b[2].x, b[2].y + step); v6 = fetch(b[3].x, b[3].y); v7 = fetch(b[3].x, b[3].y + step);
+    v8 = fetch(b[4].x, b[4].y); v9 = fetch(b[4].x, b[4].y + step); v10 = fetch(b[5].x, b[5].y); v11 = fetch(b[5].x, b[5].y + step);
+    v12 = fetch(b[6].x, b[6].y); v13 = fetch(b[6].x, b[6].y + step); v14 = fetch(b[7].x, b[7].y); v15 = fetch(b[7].x, b[7].y + step);
     dft2(v0, v1); dft2(v2, v3); dft2(v4, v5); dft2(v6, v7);
-    if (last) {
-      put(a.x, 0u, v0); put(a.x, 1u, v1); put(b.x, 0u, v2); put(b.x, 1u, v3);
-      put(c.x, 0u, v4); put(c.x, 1u, v5); put(d.x, 0u, v6); put(d.x, 1u, v7);
-      return;
-    }
-    line[a.x * N + a.y * 2u] = v0; line[a.x * N + a.y * 2u + 1u] = v1;
-    line[b.x * N + b.y * 2u] = v2; line[b.x * N + b.y * 2u + 1u] = v3;
-    line[c.x * N + c.y * 2u] = v4; line[c.x * N + c.y * 2u + 1u] = v5;
-    line[d.x * N + d.y * 2u] = v6; line[d.x * N + d.y * 2u + 1u] = v7;
+    dft2(v8, v9); dft2(v10, v11); dft2(v12, v13); dft2(v14, v15);
+    put_small(last, b[0], 0u, v0); put_small(last, b[0], 1u, v1); put_small(last, b[1], 0u, v2); put_small(last, b[1], 1u, v3);
+    put_small(last, b[2], 0u, v4); put_small(last, b[2], 1u, v5); put_small(last, b[3], 0u, v6); put_small(last, b[3], 1u, v7);
+    put_small(last, b[4], 0u, v8); put_small(last, b[4], 1u, v9); put_small(last, b[5], 0u, v10); put_small(last, b[5], 1u, v11);
+    put_small(last, b[6], 0u, v12); put_small(last, b[6], 1u, v13); put_small(last, b[7], 0u, v14); put_small(last, b[7], 1u, v15);
   }
-  barrier();
+  if (!last) barrier();
 }
 
-// A radix-8 Stockham stage of span p > 1: butterfly i (k = i mod p) reads x[i + j·N/8] times
-// w_{8p}^(jk) and writes x[(i − k)·8 + k + q·p] — the last stage (8p = N, so k = i) straight to
-// the array's element i + q·N/8.
-void radix8_stage(const uint p) {
+// A radix-16 Stockham stage of span p > 1: butterfly i (k = i mod p) reads x[i + j·N/16]
+// times w_{16p}^(jk) and writes x[(i − k)·16 + k + q·p] — the last stage (16p = N, so k = i)
+// straight to the array's element i + q·N/16. Twiddles: w^1, w^2, w^4 and w^8 from the table,
+// the other eleven as products of them (at most three roundings deeper; within the bound).
+void radix16_stage(const uint p) {
   const uint t = gl_LocalInvocationID.x;
-  const bool last = 8u * p == N;
-  const uint step = N / 8u;
+  const bool last = 16u * p == N;
+  const uint step = N / 16u;
   const uvec2 li = line_and_index(t, step, last && has(DESTINATION_LINE_FASTEST));
   const uint l = li.x, i = li.y, k = i & (p - 1u), at = l * N + i;
-  const uint w = k * (N / (8u * p));  // twiddle index of j = 1
+  const uint w = k * (N / (16u * p));  // twiddle index of j = 1
+  const cplx w1 = twiddle(w), w2 = twiddle(2u * w), w4 = twiddle(4u * w), w8 = twiddle(8u * w);
+  const cplx w3 = mul(w2, w1), w5 = mul(w4, w1), w6 = mul(w4, w2), w7 = mul(w4, w3);
   v0 = line[at];
-  v1 = mul(line[at + step], twiddle(w));
-  v2 = mul(line[at + 2u * step], twiddle(2u * w));
-  v3 = mul(line[at + 3u * step], twiddle(3u * w));
-  v4 = mul(line[at + 4u * step], twiddle(4u * w));
-  v5 = mul(line[at + 5u * step], twiddle(5u * w));
-  v6 = mul(line[at + 6u * step], twiddle(6u * w));
-  v7 = mul(line[at + 7u * step], twiddle(7u * w));
-  dft8(v0, v1, v2, v3, v4, v5, v6, v7);
-  if (last) {
-    put(l, i, v0); put(l, i + step, v1); put(l, i + 2u * step, v2); put(l, i + 3u * step, v3);
-    put(l, i + 4u * step, v4); put(l, i + 5u * step, v5); put(l, i + 6u * step, v6); put(l, i + 7u * step, v7);
-    return;
-  }
-  barrier();
-  const uint to = l * N + (i - k) * 8u + k;
-  line[to] = v0; line[to + p] = v1; line[to + 2u * p] = v2; line[to + 3u * p] = v3;
-  line[to + 4u * p] = v4; line[to + 5u * p] = v5; line[to + 6u * p] = v6; line[to + 7u * p] = v7;
-  barrier();
+  v1 = mul(line[at + step], w1);
+  v2 = mul(line[at + 2u * step], w2);
+  v3 = mul(line[at + 3u * step], w3);
+  v4 = mul(line[at + 4u * step], w4);
+  v5 = mul(line[at + 5u * step], w5);
+  v6 = mul(line[at + 6u * step], w6);
+  v7 = mul(line[at + 7u * step], w7);
+  v8 = mul(line[at + 8u * step], w8);
+  v9 = mul(line[at + 9u * step], mul(w8, w1));
+  v10 = mul(line[at + 10u * step], mul(w8, w2));
+  v11 = mul(line[at + 11u * step], mul(w8, w3));
+  v12 = mul(line[at + 12u * step], mul(w8, w4));
+  v13 = mul(line[at + 13u * step], mul(w8, w5));
+  v14 = mul(line[at + 14u * step], mul(w8, w6));
+  v15 = mul(line[at + 15u * step], mul(w8, w7));
+  dft16(v0, v1, v2, v3, v4, v5, v6, v7, v8, v9, v10, v11, v12, v13, v14, v15);
+  if (!last) barrier();
+  write16(last, l, last ? i : (i - k) * 16u + k, last ? step : p,
+          v0, v4, v8, v12, v1, v5, v9, v13, v2, v6, v10, v14, v3, v7, v11, v15);
+  if (!last) barrier();
 }
 
 void main() {
@@ -251,5 +306,5 @@ void main() {
     return;
   }
   first_stage();
-  for (uint p = FIRST_RADIX; p < N; p *= 8u) radix8_stage(p);
+  for (uint p = FIRST_RADIX; p < N; p *= 16u) radix16_stage(p);
 }

@@ -22,14 +22,14 @@ constexpr std::uint32_t kInverse = 1, kRealInput = 2, kHermitian = 4, kRealOutpu
 
 std::uint32_t log2_of(std::uint32_t n) { return std::uint32_t(std::countr_zero(n)); }
 
-// The longest line one pass holds: its complex numbers in shared memory, 8 per invocation.
+// The longest line one pass holds: its complex numbers in shared memory, 16 per invocation.
 std::uint32_t shared_points(const Context& context, Precision precision) {
   const auto& limits = context.limits();
   const std::uint32_t invocations =
       std::min(limits.maxComputeWorkGroupInvocations, limits.maxComputeWorkGroupSize[0]);
   return std::bit_floor(std::min(limits.maxComputeSharedMemorySize /
                                      std::uint32_t(2 * real_size(precision)),
-                                 8 * invocations));
+                                 16 * invocations));
 }
 
 }  // namespace
@@ -162,11 +162,13 @@ void FftProgram::add_axis(bool x_axis, std::uint32_t n, std::uint32_t columns, T
     c.flags = source_flags | destination_flags;
     c.row = nx;
     c.limit = destination_row;
-    if (x_axis) {  // lo counts rows
+    if (x_axis) {  // lo counts rows — of the whole batch, which lies row after row
       c.in_lo = source_row;
       c.out_lo = destination_row;
       c.in_element = c.out_element = 1;
-      add_line_pass(n, ny, 1, c, source, destination, in_bytes, out_bytes, in_batch, out_batch, -1);
+      const std::uint32_t rows = per_batch_ ? ny : ny * std::uint32_t(spec_.howmany);
+      add_line_pass(n, rows, 1, c, source, destination, in_bytes, out_bytes, in_batch, out_batch, -1);
+      if (!per_batch_) passes_.back().whole_batch_in_lines = true;
     } else {  // lo counts columns, read and written row by row
       c.in_lo = c.out_lo = 1;
       c.in_element = source_row;
@@ -243,16 +245,18 @@ void FftProgram::add_line_pass(std::uint32_t n, std::uint32_t lines_lo, std::uin
   // lavapipe's threads share out more, smaller workgroups better than fewer larger ones), at least 8 points (a thread's registers), never beyond shared memory.
   std::uint32_t lines = std::max(1u, std::min(1024u, capacity) / n);
   lines = std::min(lines, std::bit_ceil(lines_lo));
-  lines = std::max(lines, std::max(1u, 8u / n));
-  // Threads: 8 points each (one radix-8 butterfly a stage); lines fit by line_capacity().
-  const std::uint32_t threads = n * lines / 8;
+  lines = std::max(lines, std::max(1u, 16u / n));
+  // Threads: 16 points each (one radix-16 butterfly a stage).
+  const std::uint32_t threads = n * lines / 16;
   const std::uint32_t max_threads =
       std::min(limits.maxComputeWorkGroupInvocations, limits.maxComputeWorkGroupSize[0]);
   if (threads > max_threads || threads == 0) {
     throw InternalError(fmt::format("vulkan: {}: a {}-point line would need {} invocations, the "
                                     "device allows {}", spec_.describe(), n, threads, max_threads));
   }
-  const std::uint32_t first_radix = n == 1 ? 1 : (log2_of(n) % 3 == 1 ? 2 : (log2_of(n) % 3 == 2 ? 4 : 8));
+  // n = first_radix · 16^m.
+  constexpr std::uint32_t kFirstRadix[4] = {16, 2, 4, 8};
+  const std::uint32_t first_radix = n == 1 ? 1 : (n < 16 ? n : kFirstRadix[log2_of(n) % 4]);
   c.lines_lo = lines_lo;
   c.in_batch = per_batch_ ? 0 : source_batch;
   c.out_batch = per_batch_ ? 0 : destination_batch;
@@ -380,7 +384,7 @@ void FftProgram::record(VkCommandBuffer commands, Workspace& w, VkBuffer in, VkB
       vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline->layout, 0,
                               1, &w.sets[p], 2, offsets);
       vkCmdDispatch(commands, pass.groups_x, pass.groups_y,
-                    per_batch_ ? 1u : std::uint32_t(spec_.howmany));
+                    per_batch_ || pass.whole_batch_in_lines ? 1u : std::uint32_t(spec_.howmany));
     }
   }
   Context::barrier(commands);

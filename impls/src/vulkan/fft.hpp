@@ -28,6 +28,7 @@ struct Pass {
   int line_twiddles = 0, split_twiddles = 0;   // indices into FftProgram::twiddles
   VkDeviceSize source_stride_bytes = 0;        // one transform of the batch, on each side
   VkDeviceSize destination_stride_bytes = 0;
+  bool whole_batch_in_lines = false;  // lines run through the batch: one workgroup layer (z = 1)
 };
 
 // What one execution owns: scratch arrays, descriptor sets, and (for host memory) device
