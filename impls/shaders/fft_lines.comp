@@ -65,7 +65,17 @@ layout(constant_id = 17) const uint ROW = 0;
 layout(constant_id = 18) const uint WRITE_LIMIT = 0;
 layout(constant_id = 19) const uint SPLIT_N = 1;
 
-shared cplx line[SHARED_POINTS];
+// Two copies of the lines where shared memory allows (PING_PONG = 1): a stage reads one and
+// writes the other, one barrier a stage and no registers held across it (lavapipe saves them
+// at every barrier); else one copy, read, barrier, write, barrier.
+layout(constant_id = 20) const uint PING_PONG = 0;
+shared cplx line[SHARED_POINTS * (1u + PING_PONG)];
+uint current = 0u;  // offset of the copy the next stage reads; writes go to the other
+
+// After a stage's writes: the copy just written is the one the next stage reads.
+void swap_copies() {
+  if (PING_PONG == 1u) current = SHARED_POINTS - current;
+}
 
 bool has(uint flag) { return (FLAGS & flag) != 0u; }
 
@@ -191,25 +201,25 @@ void write16(bool to_array, uint l, uint first, uint stride, cplx y0, cplx y1, c
     put(l, first + 12u * stride, y12); put(l, first + 13u * stride, y13); put(l, first + 14u * stride, y14); put(l, first + 15u * stride, y15);
     return;
   }
-  const uint at = l * N + first;
+  const uint at = (PING_PONG == 1u ? SHARED_POINTS - current : current) + l * N + first;
   line[at] = y0; line[at + stride] = y1; line[at + 2u * stride] = y2; line[at + 3u * stride] = y3;
   line[at + 4u * stride] = y4; line[at + 5u * stride] = y5; line[at + 6u * stride] = y6; line[at + 7u * stride] = y7;
   line[at + 8u * stride] = y8; line[at + 9u * stride] = y9; line[at + 10u * stride] = y10; line[at + 11u * stride] = y11;
   line[at + 12u * stride] = y12; line[at + 13u * stride] = y13; line[at + 14u * stride] = y14; line[at + 15u * stride] = y15;
 }
 
-// Values of butterfly b (radix R < 16, `count` = 16/R of them per thread) to the array or to
+// Values of butterfly b (radix R < 16: 16/R of them per thread, t + u·T) to the array or to
 // shared memory, x[i·R + q] in the first stage.
 void put_small(bool to_array, uvec2 li, uint q, cplx v) {
   if (to_array) put(li.x, q, v);  // the only stage: N = R, i = 0
-  else line[li.x * N + li.y * FIRST_RADIX + q] = v;
+  else line[(PING_PONG == 1u ? SHARED_POINTS - current : current) + li.x * N + li.y * FIRST_RADIX + q] = v;
 }
 
 // The first stage (span 1, no twiddles) of radix FIRST_RADIX, read from the array itself:
 // butterfly i of a line reads x[i + j·N/R] and writes x[i·R + q] — to shared memory, or, when
 // it is the only stage (N = R), to the array.
 void first_stage() {
-  const uint t = gl_LocalInvocationID.x;
+  const uint t = gl_LocalInvocationID.x, T = gl_WorkGroupSize.x;
   const bool last = FIRST_RADIX == N;
   const bool fastest = last ? has(DESTINATION_LINE_FASTEST) : has(SOURCE_LINE_FASTEST);
   const uint step = N / FIRST_RADIX;
@@ -223,7 +233,7 @@ void first_stage() {
     dft16(v0, v1, v2, v3, v4, v5, v6, v7, v8, v9, v10, v11, v12, v13, v14, v15);
     write16(last, l, last ? 0u : i * 16u, 1u, v0, v4, v8, v12, v1, v5, v9, v13, v2, v6, v10, v14, v3, v7, v11, v15);
   } else if (FIRST_RADIX == 8u) {
-    const uvec2 a = line_and_index(2u * t, step, fastest), b = line_and_index(2u * t + 1u, step, fastest);
+    const uvec2 a = line_and_index(t, step, fastest), b = line_and_index(t + T, step, fastest);
     v0 = fetch(a.x, a.y); v1 = fetch(a.x, a.y + step); v2 = fetch(a.x, a.y + 2u * step); v3 = fetch(a.x, a.y + 3u * step);
     v4 = fetch(a.x, a.y + 4u * step); v5 = fetch(a.x, a.y + 5u * step); v6 = fetch(a.x, a.y + 6u * step); v7 = fetch(a.x, a.y + 7u * step);
     v8 = fetch(b.x, b.y); v9 = fetch(b.x, b.y + step); v10 = fetch(b.x, b.y + 2u * step); v11 = fetch(b.x, b.y + 3u * step);
@@ -235,8 +245,8 @@ void first_stage() {
     put_small(last, b, 0u, v8); put_small(last, b, 1u, v9); put_small(last, b, 2u, v10); put_small(last, b, 3u, v11);
     put_small(last, b, 4u, v12); put_small(last, b, 5u, v13); put_small(last, b, 6u, v14); put_small(last, b, 7u, v15);
   } else if (FIRST_RADIX == 4u) {
-    const uvec2 a = line_and_index(4u * t, step, fastest), b = line_and_index(4u * t + 1u, step, fastest);
-    const uvec2 c = line_and_index(4u * t + 2u, step, fastest), d = line_and_index(4u * t + 3u, step, fastest);
+    const uvec2 a = line_and_index(t, step, fastest), b = line_and_index(t + T, step, fastest);
+    const uvec2 c = line_and_index(t + 2u * T, step, fastest), d = line_and_index(t + 3u * T, step, fastest);
     v0 = fetch(a.x, a.y); v1 = fetch(a.x, a.y + step); v2 = fetch(a.x, a.y + 2u * step); v3 = fetch(a.x, a.y + 3u * step);
     v4 = fetch(b.x, b.y); v5 = fetch(b.x, b.y + step); v6 = fetch(b.x, b.y + 2u * step); v7 = fetch(b.x, b.y + 3u * step);
     v8 = fetch(c.x, c.y); v9 = fetch(c.x, c.y + step); v10 = fetch(c.x, c.y + 2u * step); v11 = fetch(c.x, c.y + 3u * step);
@@ -247,20 +257,25 @@ void first_stage() {
     put_small(last, c, 0u, v8); put_small(last, c, 1u, v9); put_small(last, c, 2u, v10); put_small(last, c, 3u, v11);
     put_small(last, d, 0u, v12); put_small(last, d, 1u, v13); put_small(last, d, 2u, v14); put_small(last, d, 3u, v15);
   } else {
-    uvec2 b[8];
-    for (uint u = 0u; u < 8u; ++u) b[u] = line_and_index(8u * t + u, step, fastest);
-    v0 = fetch(b[0].x, b[0].y); v1 = fetch(b[0].x, b[0].y + step); v2 = fetch(b[1].x, b[1].y); v3 = fetch(b[1].x, b[1].y + step);
-    v4 = fetch(b[2].x, b[2].y); v5 = fetch(b[2].x, b[2].y + step); v6 = fetch(b[3].x, b[3].y); v7 = fetch(b[3].x, b[3].y + step);
-    v8 = fetch(b[4].x, b[4].y); v9 = fetch(b[4].x, b[4].y + step); v10 = fetch(b[5].x, b[5].y); v11 = fetch(b[5].x, b[5].y + step);
-    v12 = fetch(b[6].x, b[6].y); v13 = fetch(b[6].x, b[6].y + step); v14 = fetch(b[7].x, b[7].y); v15 = fetch(b[7].x, b[7].y + step);
+    // Named, not an array (see dft2): butterflies t + u·T, u = 0 … 7, so that neighbouring
+    // invocations take neighbouring butterflies.
+    const uvec2 b0 = line_and_index(t, step, fastest), b1 = line_and_index(t + 1u * T, step, fastest);
+    const uvec2 b2 = line_and_index(t + 2u * T, step, fastest), b3 = line_and_index(t + 3u * T, step, fastest);
+    const uvec2 b4 = line_and_index(t + 4u * T, step, fastest), b5 = line_and_index(t + 5u * T, step, fastest);
+    const uvec2 b6 = line_and_index(t + 6u * T, step, fastest), b7 = line_and_index(t + 7u * T, step, fastest);
+    v0 = fetch(b0.x, b0.y); v1 = fetch(b0.x, b0.y + step); v2 = fetch(b1.x, b1.y); v3 = fetch(b1.x, b1.y + step);
+    v4 = fetch(b2.x, b2.y); v5 = fetch(b2.x, b2.y + step); v6 = fetch(b3.x, b3.y); v7 = fetch(b3.x, b3.y + step);
+    v8 = fetch(b4.x, b4.y); v9 = fetch(b4.x, b4.y + step); v10 = fetch(b5.x, b5.y); v11 = fetch(b5.x, b5.y + step);
+    v12 = fetch(b6.x, b6.y); v13 = fetch(b6.x, b6.y + step); v14 = fetch(b7.x, b7.y); v15 = fetch(b7.x, b7.y + step);
     dft2(v0, v1); dft2(v2, v3); dft2(v4, v5); dft2(v6, v7);
     dft2(v8, v9); dft2(v10, v11); dft2(v12, v13); dft2(v14, v15);
-    put_small(last, b[0], 0u, v0); put_small(last, b[0], 1u, v1); put_small(last, b[1], 0u, v2); put_small(last, b[1], 1u, v3);
-    put_small(last, b[2], 0u, v4); put_small(last, b[2], 1u, v5); put_small(last, b[3], 0u, v6); put_small(last, b[3], 1u, v7);
-    put_small(last, b[4], 0u, v8); put_small(last, b[4], 1u, v9); put_small(last, b[5], 0u, v10); put_small(last, b[5], 1u, v11);
-    put_small(last, b[6], 0u, v12); put_small(last, b[6], 1u, v13); put_small(last, b[7], 0u, v14); put_small(last, b[7], 1u, v15);
+    put_small(last, b0, 0u, v0); put_small(last, b0, 1u, v1); put_small(last, b1, 0u, v2); put_small(last, b1, 1u, v3);
+    put_small(last, b2, 0u, v4); put_small(last, b2, 1u, v5); put_small(last, b3, 0u, v6); put_small(last, b3, 1u, v7);
+    put_small(last, b4, 0u, v8); put_small(last, b4, 1u, v9); put_small(last, b5, 0u, v10); put_small(last, b5, 1u, v11);
+    put_small(last, b6, 0u, v12); put_small(last, b6, 1u, v13); put_small(last, b7, 0u, v14); put_small(last, b7, 1u, v15);
   }
   if (!last) barrier();
+  swap_copies();
 }
 
 // A radix-16 Stockham stage of span p > 1: butterfly i (k = i mod p) reads x[i + j·N/16]
@@ -272,7 +287,7 @@ void radix16_stage(const uint p) {
   const bool last = 16u * p == N;
   const uint step = N / 16u;
   const uvec2 li = line_and_index(t, step, last && has(DESTINATION_LINE_FASTEST));
-  const uint l = li.x, i = li.y, k = i & (p - 1u), at = l * N + i;
+  const uint l = li.x, i = li.y, k = i & (p - 1u), at = current + l * N + i;
   const uint w = k * (N / (16u * p));  // twiddle index of j = 1
   const cplx w1 = twiddle(w), w2 = twiddle(2u * w), w4 = twiddle(4u * w), w8 = twiddle(8u * w);
   const cplx w3 = mul(w2, w1), w5 = mul(w4, w1), w6 = mul(w4, w2), w7 = mul(w4, w3);
@@ -293,10 +308,11 @@ void radix16_stage(const uint p) {
   v14 = mul(line[at + 14u * step], mul(w8, w6));
   v15 = mul(line[at + 15u * step], mul(w8, w7));
   dft16(v0, v1, v2, v3, v4, v5, v6, v7, v8, v9, v10, v11, v12, v13, v14, v15);
-  if (!last) barrier();
+  if (!last && PING_PONG == 0u) barrier();
   write16(last, l, last ? i : (i - k) * 16u + k, last ? step : p,
           v0, v4, v8, v12, v1, v5, v9, v13, v2, v6, v10, v14, v3, v7, v11, v15);
   if (!last) barrier();
+  swap_copies();
 }
 
 void main() {

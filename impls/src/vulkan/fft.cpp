@@ -266,6 +266,10 @@ void FftProgram::add_line_pass(std::uint32_t n, std::uint32_t lines_lo, std::uin
   static_assert(sizeof(PassConstants) == 15 * sizeof(std::uint32_t));
   const auto* words = reinterpret_cast<const std::uint32_t*>(&c);
   specialization.insert(specialization.end(), words, words + 15);
+  // Two copies of the lines in shared memory when they fit: one barrier a stage, not two.
+  const bool ping_pong = 2 * std::size_t(n) * lines * 2 * real_size(spec_.precision) <=
+                         limits.maxComputeSharedMemorySize;
+  specialization.push_back(ping_pong ? 1 : 0);
   const auto& spirv = fft_lines_spirv(spec_.precision);
   Pass pass;
   pass.pipeline = &context_->pipeline(spec_.precision == Precision::f32 ? "fft_lines_fp32" : "fft_lines_fp64",
