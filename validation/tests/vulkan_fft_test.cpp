@@ -51,6 +51,31 @@ TEST(Vulkan, Fp32At2048SquaredWithinFiveTimesTenToTheMinusSeven) {
   EXPECT_LE(r.rel_linf, r.bound) << r.oracle;
 }
 
+// Every length 1 … 4096 on either axis, both precisions, c2c and c2r (r2c shares c2c's passes
+// with other flags; the accuracy suite has it): each length selects its own first radix (2, 4,
+// 8, 16) and number of radix-16 stages.
+TEST(Vulkan, EveryPowerOfTwoLengthOnEitherAxis) {
+  VULKAN_OR_SKIP(backend);
+  for (Precision precision : backend->capabilities().precisions) {
+    for (int n = 1; n <= 4096; n *= 2) {
+      for (auto [nx, ny] : {std::pair{n, 2}, std::pair{4, n}}) {
+        for (auto [kind, direction] : {std::pair{Kind::c2c, Direction::forward},
+                                       std::pair{Kind::c2r, Direction::inverse}}) {
+          TransformSpec spec;
+          spec.nx = nx;
+          spec.ny = ny;
+          spec.kind = kind;
+          spec.direction = direction;
+          spec.precision = precision;
+          const auto r = measure_transform_accuracy(*backend, spec, 11);
+          EXPECT_LE(r.rel_l2, r.bound) << spec.describe() << " against " << r.oracle;
+          EXPECT_LE(r.rel_linf, r.bound) << spec.describe() << " against " << r.oracle;
+        }
+      }
+    }
+  }
+}
+
 // Lines longer than any device's shared memory (256 KiB: 32768 fp32 or 16384 fp64 points) run
 // as two passes (four-step), on either axis and for every kind.
 TEST(Vulkan, LinesBeyondSharedMemoryRunAsTwoPassesOnEitherAxis) {
