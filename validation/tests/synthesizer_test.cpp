@@ -1321,8 +1321,11 @@ TEST(VulkanSynthesizer, AgreesWithFftwAtEarlyAndLateTimes) {
 // 2e-6, the fp32 bound of the definition tests (the phase error itself is ≈ 1e-15 rad).
 TEST(VulkanSynthesizer, PhasesStayExactAtLateTimes) {
   SWELL_VULKAN_OR_SKIP();
-  EXPECT_LT(late_time_height_error("vulkan", Precision::f64), 1e-12);
-  EXPECT_LT(late_time_height_error("vulkan", Precision::f32), 2e-6);
+  const double f64 = late_time_height_error("vulkan", Precision::f64);
+  const double f32 = late_time_height_error("vulkan", Precision::f32);
+  std::printf("vulkan height at t = 1e9 s against binary128 phases: fp64 %.2e, fp32 %.2e\n", f64, f32);
+  EXPECT_LT(f64, 1e-12);
+  EXPECT_LT(f32, 2e-6);
 }
 
 // The device's non-finite probe: λ = 1e300 (a Synthesizer built directly, past the validity
