@@ -26,11 +26,12 @@
 // rest_ms and transform_fraction are wall-clock too, the bare transforms run on device
 // Buffers as the frame's do. Its frames also carry the device's own
 // timestamps (Synthesizer::evaluate_timed, vulkan_execute_timed):
-//   device_ms             evolution + transforms + unpack of one frame, before the download
-//   download_ms           the six fields' copy to host-visible memory
-//   transforms_device_ms  the bare transforms alone
-// (frame real time − device_ms − download_ms is the submission, the wait and the copy of the
-// staged fields into the caller's memory).
+//   device_seconds             evolution + transforms + unpack of one frame, before the download
+//   download_seconds           the six fields' copy to host-visible memory
+//   transforms_device_seconds  the bare transforms alone
+// (seconds per frame, as fft_bench's device_seconds; frame real time − device_seconds −
+// download_seconds is the submission, the wait and the copy of the staged fields into the
+// caller's memory).
 //
 // The case: JONSWAP Hs 3 m, Tp 8 s, γ 3.3, cos2s s = 10, over a 1000 m patch, one thread.
 // Implementations: every backend whose capabilities().exact is true except naive, or
@@ -221,9 +222,9 @@ void run_frame(benchmark::State& state, const std::string& impl, Precision preci
   state.counters["rest_ms"] = 1e3 * (frame_seconds - transform_seconds) / iterations;
   state.counters["transform_fraction"] = transform_seconds / frame_seconds;
   if (on_device) {
-    state.counters["device_ms"] = 1e3 * device_seconds / iterations;
-    state.counters["download_ms"] = 1e3 * download_seconds / iterations;
-    state.counters["transforms_device_ms"] = 1e3 * transform_device_seconds / iterations;
+    state.counters["device_seconds"] = device_seconds / iterations;
+    state.counters["download_seconds"] = download_seconds / iterations;
+    state.counters["transforms_device_seconds"] = transform_device_seconds / iterations;
   }
   state.counters["setup_s"] = f->setup_seconds;
   state.SetLabel(to_string(f->synthesizer->packing()));
