@@ -27,11 +27,12 @@
 // Buffers as the frame's do. Its frames also carry the device's own
 // timestamps (Synthesizer::evaluate_timed, vulkan_execute_timed):
 //   device_seconds             evolution + transforms + unpack of one frame, before the download
-//   download_seconds           the six fields' copy to host-visible memory
+//   evolve_seconds             the evolution kernel alone (the spectra at t)
+//   unpack_seconds             the unpack kernel alone (the six fields)
 //   transforms_device_seconds  the bare transforms alone
-// (seconds per frame, as fft_bench's device_seconds; frame real time − device_seconds −
-// download_seconds is the submission, the wait and the copy of the staged fields into the
-// caller's memory).
+// (seconds per frame, as fft_bench's device_seconds; frame real time − device_seconds is the
+// download, the submission, the wait and the copy of the staged fields into the caller's
+// memory).
 //
 // The case: JONSWAP Hs 3 m, Tp 8 s, γ 3.3, cos2s s = 10, over a 1000 m patch, one thread.
 // Implementations: every backend whose capabilities().exact is true except naive, or
@@ -43,7 +44,7 @@
 //
 //   build/bench/swell_frame_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //   SWELL_BENCH_IMPLS=fftw,radix2 build/bench/swell_frame_bench --benchmark_filter='/1024$'
-//   SWELL_BENCH_IMPLS=vulkan build/bench/swell_frame_bench --benchmark_repetitions=5 \
+//   SWELL_BENCH_IMPLS=vulkan build/bench/swell_frame_bench --benchmark_repetitions=5
 //       --benchmark_filter='frame(_transforms)?/vulkan/fp32/(512|1024)/real_time$'
 #include <benchmark/benchmark.h>
 #include <fftw3.h>
@@ -200,7 +201,7 @@ void run_frame(benchmark::State& state, const std::string& impl, Precision preci
   const bool on_device = f->bare->backend->capabilities().device_resident;
   const auto clock = on_device ? wall_seconds : thread_cpu_seconds;
   double frame_seconds = 0, transform_seconds = 0;
-  double device_seconds = 0, download_seconds = 0, transform_device_seconds = 0;
+  double device_seconds = 0, evolve_seconds = 0, unpack_seconds = 0, transform_device_seconds = 0;
   for (auto _ : state) {
     const double start = clock();
     const FrameTimings timings = f->synthesizer->evaluate_timed(f->t, f->fields);
@@ -213,7 +214,8 @@ void run_frame(benchmark::State& state, const std::string& impl, Precision preci
     frame_seconds += middle - start;
     transform_seconds += end - middle;
     device_seconds += timings.device_seconds;
-    download_seconds += timings.download_seconds;
+    evolve_seconds += timings.evolve_seconds;
+    unpack_seconds += timings.unpack_seconds;
     f->t += kFrameStep;
     state.ResumeTiming();
   }
@@ -223,7 +225,8 @@ void run_frame(benchmark::State& state, const std::string& impl, Precision preci
   state.counters["transform_fraction"] = transform_seconds / frame_seconds;
   if (on_device) {
     state.counters["device_seconds"] = device_seconds / iterations;
-    state.counters["download_seconds"] = download_seconds / iterations;
+    state.counters["evolve_seconds"] = evolve_seconds / iterations;
+    state.counters["unpack_seconds"] = unpack_seconds / iterations;
     state.counters["transforms_device_seconds"] = transform_device_seconds / iterations;
   }
   state.counters["setup_s"] = f->setup_seconds;

@@ -27,46 +27,56 @@
 // depends on each operation being rounded as written, never contracted, reassociated or
 // simplified (c − (c − a) is not a).
 //
+// Memory accesses are what a frame costs on lavapipe (each one is a loop over the SIMD lanes),
+// so the kernel makes few: kx and ky come from the integer indices (as the host's tables do:
+// the signed index times Δk in double, rounded once), the scales are push constants, and an fp32
+// complex value is read and written as one 64-bit word (its two floats' bits in a double, never
+// used as a number: no arithmetic touches it, so its bits stay as written).
+//
 // Bindings: the waves (a, b) per half entry, λ/|k| per half entry, ω per half entry (double),
-// the tables (8 field scales, 8 inverse scales, kx of the nx columns, ky of the ny rows), and
-// the eight output planes, each bound on its own (one plane of a large fp64 batch fits
-// maxStorageBufferRange when the whole batch does not). frame.base[p] is the element where
-// plane p starts within its binding (0 unless a small grid's planes share an aligned window).
+// and the eight output planes (complex), each bound on its own: one plane of a large fp64 batch
+// fits maxStorageBufferRange when the whole batch does not. A tiny grid's planes, smaller than
+// minStorageBufferOffsetAlignment, share one binding of the whole buffer instead, and plane p
+// then starts at element p · frame.plane_stride (0 otherwise).
 #ifdef SWELL_FP64
 #define real double
-#define real4 dvec4
+#define complex_word dvec2
+complex_word word(double re, double im) { return dvec2(re, im); }
+#define wave_words dvec4
 #else
 #define real float
-#define real4 vec4
+#define complex_word double
+// An fp32 complex as one 64-bit word, real part in the low half (the float pair's layout).
+complex_word word(float re, float im) { return packDouble2x32(uvec2(floatBitsToUint(re), floatBitsToUint(im))); }
+#define wave_words dvec2
 #endif
 
 layout(local_size_x_id = 0) in;
 layout(constant_id = 1) const bool PAIRS = true;
 
-layout(set = 0, binding = 0) readonly buffer Waves { real4 waves[]; };  // (a.re, a.im, b.re, b.im)
+layout(set = 0, binding = 0) readonly buffer Waves { wave_words waves[]; };  // (a, b), see main
 layout(set = 0, binding = 1) readonly buffer LambdaOverK { real lambda_over_k[]; };
 layout(set = 0, binding = 2) readonly buffer Omega { double omega[]; };
-layout(set = 0, binding = 3) readonly buffer Tables {
-  real field_scale[8];
-  real inverse_scale[8];
-  real wave_number[];  // kx[0 … nx), then ky[0 … ny)
-};
-layout(set = 0, binding = 4) writeonly buffer Plane0 { real plane0[]; };
-layout(set = 0, binding = 5) writeonly buffer Plane1 { real plane1[]; };
-layout(set = 0, binding = 6) writeonly buffer Plane2 { real plane2[]; };
-layout(set = 0, binding = 7) writeonly buffer Plane3 { real plane3[]; };
-layout(set = 0, binding = 8) writeonly buffer Plane4 { real plane4[]; };
-layout(set = 0, binding = 9) writeonly buffer Plane5 { real plane5[]; };
-layout(set = 0, binding = 10) writeonly buffer Plane6 { real plane6[]; };
-layout(set = 0, binding = 11) writeonly buffer Plane7 { real plane7[]; };
+layout(set = 0, binding = 3) writeonly buffer Plane0 { complex_word plane0[]; };
+layout(set = 0, binding = 4) writeonly buffer Plane1 { complex_word plane1[]; };
+layout(set = 0, binding = 5) writeonly buffer Plane2 { complex_word plane2[]; };
+layout(set = 0, binding = 6) writeonly buffer Plane3 { complex_word plane3[]; };
+layout(set = 0, binding = 7) writeonly buffer Plane4 { complex_word plane4[]; };
+layout(set = 0, binding = 8) writeonly buffer Plane5 { complex_word plane5[]; };
+layout(set = 0, binding = 9) writeonly buffer Plane6 { complex_word plane6[]; };
+layout(set = 0, binding = 10) writeonly buffer Plane7 { complex_word plane7[]; };
 
 layout(push_constant) uniform Frame {
   double t;               // s
+  double dkx, dky;        // rad/m
   uint nx, ny;
   uint half_columns;      // nx/2 + 1
   uint spectrum_columns;  // of the output spectra: nx (PAIRS) or nx/2 + 1
-  uint base[8];
+  uint plane_stride;
+  uint reserved;
+  real field_scale[8];    // powers of two, packing order (synthesizer.cpp's State::field_scale)
 } frame;
+
 
 // The double with IEEE bits hi:lo. The constants of the reduction are given by their bits, as
 // reference/phase.hpp gives them in hexadecimal: no decimal literal to be parsed or rounded.
@@ -147,48 +157,41 @@ void sin_cos(double x, out double sin_x, out double cos_x) {
   cos_x = ((quadrant + 1u) & 2u) != 0u ? -c : c;
 }
 
-void put(uint p, uint index, real v) {
-  const uint at = frame.base[p] + index;
-  switch (p) {
-    case 0u: plane0[at] = v; break;
-    case 1u: plane1[at] = v; break;
-    case 2u: plane2[at] = v; break;
-    case 3u: plane3[at] = v; break;
-    case 4u: plane4[at] = v; break;
-    case 5u: plane5[at] = v; break;
-    case 6u: plane6[at] = v; break;
-    default: plane7[at] = v; break;
-  }
-}
+// Grid::signed_index: the wave-number index of array index i along an axis of n samples.
+int signed_index(uint i, uint n) { return i < (n + 1u) / 2u ? int(i) : int(i) - int(n); }
+// kx of column i (ky of row j) as the host's table holds it: signed index × Δk in double, then
+// rounded once to the precision.
+real wave_number(uint i, uint n, double dk) { return real(double(signed_index(i, n)) * dk); }
 
 // The eight fields' spectra at k = (kx, ky) from h̃ = (hr, hi), times their scales
 // (synthesizer.cpp's field_spectra), stored at complex element `element` of each plane.
+// Straight-line code on named values: no arrays, no loops.
 void store(uint element, real hr, real hi, real kx, real ky, real lk) {
   const real lkx = lk * kx, lky = lk * ky;
-  real re[8], im[8];
-  re[0] = hr;              im[0] = hi;
-  re[1] = -kx * hi;        im[1] = kx * hr;
-  re[2] = -ky * hi;        im[2] = ky * hr;
-  re[3] = -lkx * hi;       im[3] = lkx * hr;
-  re[4] = -lky * hi;       im[4] = lky * hr;
-  re[5] = -lkx * kx * hr;  im[5] = -lkx * kx * hi;
-  re[6] = -lky * ky * hr;  im[6] = -lky * ky * hi;
-  re[7] = -lkx * ky * hr;  im[7] = -lkx * ky * hi;
-  for (uint r = 0u; r < 8u; ++r) {
-    re[r] *= field_scale[r];
-    im[r] *= field_scale[r];
-  }
+  const real re0 = hr * frame.field_scale[0],             im0 = hi * frame.field_scale[0];
+  const real re1 = -kx * hi * frame.field_scale[1],       im1 = kx * hr * frame.field_scale[1];
+  const real re2 = -ky * hi * frame.field_scale[2],       im2 = ky * hr * frame.field_scale[2];
+  const real re3 = -lkx * hi * frame.field_scale[3],      im3 = lkx * hr * frame.field_scale[3];
+  const real re4 = -lky * hi * frame.field_scale[4],      im4 = lky * hr * frame.field_scale[4];
+  const real re5 = -lkx * kx * hr * frame.field_scale[5], im5 = -lkx * kx * hi * frame.field_scale[5];
+  const real re6 = -lky * ky * hr * frame.field_scale[6], im6 = -lky * ky * hi * frame.field_scale[6];
+  const real re7 = -lkx * ky * hr * frame.field_scale[7], im7 = -lkx * ky * hi * frame.field_scale[7];
+  const uint stride = frame.plane_stride;
   if (PAIRS) {
     // Two real fields A, B per complex spectrum Â + iB̂: its inverse transform is A + iB.
-    for (uint p = 0u; p < 4u; ++p) {
-      put(p, 2u * element, re[2u * p] - im[2u * p + 1u]);
-      put(p, 2u * element + 1u, im[2u * p] + re[2u * p + 1u]);
-    }
+    plane0[element] = word(re0 - im1, im0 + re1);
+    plane1[stride + element] = word(re2 - im3, im2 + re3);
+    plane2[2u * stride + element] = word(re4 - im5, im4 + re5);
+    plane3[3u * stride + element] = word(re6 - im7, im6 + re7);
   } else {
-    for (uint r = 0u; r < 8u; ++r) {
-      put(r, 2u * element, re[r]);
-      put(r, 2u * element + 1u, im[r]);
-    }
+    plane0[element] = word(re0, im0);
+    plane1[stride + element] = word(re1, im1);
+    plane2[2u * stride + element] = word(re2, im2);
+    plane3[3u * stride + element] = word(re3, im3);
+    plane4[4u * stride + element] = word(re4, im4);
+    plane5[5u * stride + element] = word(re5, im5);
+    plane6[6u * stride + element] = word(re6, im6);
+    plane7[7u * stride + element] = word(re7, im7);
   }
 }
 
@@ -203,15 +206,23 @@ void main() {
   sin_cos(reduced_phase(omega[e], frame.t), s, c);
   // h̃ = a e^(−iωt) + b e^(+iωt), with cos and sin rounded once to the synthesis precision.
   const real cr = real(c), sr = real(s);
-  const real4 w = waves[e];
-  const real hr = (w.x + w.z) * cr + (w.y - w.w) * sr;
-  const real hi = (w.y + w.w) * cr - (w.x - w.z) * sr;
+#ifdef SWELL_FP64
+  const dvec4 w = waves[e];  // (a.re, a.im, b.re, b.im)
+  const double a_re = w.x, a_im = w.y, b_re = w.z, b_im = w.w;
+#else
+  const dvec2 w = waves[e];  // a and b, each an fp32 complex word
+  const vec2 a = uintBitsToFloat(unpackDouble2x32(w.x)), b = uintBitsToFloat(unpackDouble2x32(w.y));
+  const float a_re = a.x, a_im = a.y, b_re = b.x, b_im = b.y;
+#endif
+  const real hr = (a_re + b_re) * cr + (a_im - b_im) * sr;
+  const real hi = (a_im + b_im) * cr - (a_re - b_re) * sr;
   const real lk = lambda_over_k[e];
   const uint columns = frame.spectrum_columns;
-  store(j * columns + i, hr, hi, wave_number[i], wave_number[nx + j], lk);
+  store(j * columns + i, hr, hi, wave_number(i, nx, frame.dkx), wave_number(j, ny, frame.dky), lk);
   if (PAIRS && i >= 1u && i < half_columns - 1u) {
     // Column nx − i of the mirror row holds −k of this entry: conj(h̃), the same λ/|k|.
     const uint mirror = (ny - j) % ny, column = nx - i;
-    store(mirror * columns + column, hr, -hi, wave_number[column], wave_number[nx + mirror], lk);
+    store(mirror * columns + column, hr, -hi, wave_number(column, nx, frame.dkx),
+          wave_number(mirror, ny, frame.dky), lk);
   }
 }

@@ -24,8 +24,7 @@ struct DeviceFrameTables {
   const void *a_re = nullptr, *a_im = nullptr, *b_re = nullptr, *b_im = nullptr;
   const void* lambda_over_k = nullptr;
   const double* omega = nullptr;
-  const void* kx = nullptr;  // [nx], per column of a full row
-  const void* ky = nullptr;  // [ny], per row
+  double dkx = 0, dky = 0;   // Δkx, Δky: the kernels form kx and ky as the host's tables do
   const void* field_scale = nullptr;    // [8], packing order (synthesizer.cpp)
   const void* inverse_scale = nullptr;  // [8]
 };

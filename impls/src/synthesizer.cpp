@@ -480,8 +480,8 @@ void Synthesizer::State::make_device_frame() {
   tables.b_im = w.b_im.data();
   tables.lambda_over_k = w.lambda_over_k.data();
   tables.omega = omega.data();
-  tables.kx = kx<Real>().data();
-  tables.ky = ky<Real>().data();
+  tables.dkx = ocean_case.grid.dkx();
+  tables.dky = ocean_case.grid.dky();
   tables.field_scale = scales<Real>(false);
   tables.inverse_scale = scales<Real>(true);
   device_frame = make_vulkan_frame(*backend, *plan, tables);

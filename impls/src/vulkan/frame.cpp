@@ -32,33 +32,37 @@ constexpr int kFields = 6;      // reference::kAllFields
 // of lavapipe's 8 lanes, and few enough that the last, partial workgroup of a row costs little.
 constexpr std::uint32_t kLocalSize = 128;
 
-// The push constants of frame_evolve.comp and frame_unpack.comp, in their std430 layout.
-struct EvolveConstants {
-  double t = 0;
-  std::uint32_t nx = 0, ny = 0, half_columns = 0, spectrum_columns = 0;
-  std::uint32_t base[kRealFields] = {};
+// The push constants of frame_evolve.comp and frame_unpack.comp, in their std430 layout: these
+// headers, then the eight (inverse) field scales in the synthesis precision.
+struct EvolveHeader {
+  double t = 0, dkx = 0, dky = 0;
+  std::uint32_t nx = 0, ny = 0, half_columns = 0, spectrum_columns = 0, plane_stride = 0,
+                reserved = 0;
 };
-static_assert(sizeof(EvolveConstants) == 56 && offsetof(EvolveConstants, base) == 24);
-struct UnpackConstants {
-  std::uint32_t count = 0;
-  std::uint32_t input_base[kRealFields] = {};
-  std::uint32_t field_base[kFields] = {};
+static_assert(sizeof(EvolveHeader) == 48);
+struct UnpackHeader {
+  std::uint32_t count = 0, input_stride = 0, field_stride = 0, reserved = 0;
 };
-static_assert(sizeof(UnpackConstants) == 60 && offsetof(UnpackConstants, field_base) == 36);
+static_assert(sizeof(UnpackHeader) == 16);
 
-// Storage buffers each kernel binds (frame_evolve.comp: 4 tables and 8 planes; frame_unpack.comp:
-// the tables, the probe, 8 input planes, 6 fields).
-constexpr std::uint32_t kEvolveBuffers = 4 + kRealFields;
-constexpr std::uint32_t kUnpackBuffers = 2 + kRealFields + kFields;
+// Storage buffers each kernel binds (frame_evolve.comp: the waves, λ/|k|, ω and 8 planes;
+// frame_unpack.comp: the probe, 8 input planes, 6 fields).
+constexpr std::uint32_t kEvolveBuffers = 3 + kRealFields;
+constexpr std::uint32_t kUnpackBuffers = 1 + kRealFields + kFields;
 
-// A binding of `bytes` bytes from `start` in a buffer: the offset rounded down to the device's
-// minStorageBufferOffsetAlignment, and the element where the data starts inside the window
-// (0 whenever a plane's size is a multiple of the alignment, as on every grid past a few
-// samples; a tiny grid's planes share a window).
+// A binding: a buffer's window (offset, range).
 struct Window {
   VkBuffer buffer = VK_NULL_HANDLE;
   VkDeviceSize offset = 0, range = 0;
-  std::uint32_t base = 0;
+};
+
+// The bindings of `planes` planes of `plane_bytes` each from the start of `buffer`, in words of
+// `word_bytes`: one window per plane, or — when a plane's size is not a multiple of the
+// device's minStorageBufferOffsetAlignment (a grid of a few samples) — the whole buffer for
+// every one, plane p then starting at word p · stride.
+struct Planes {
+  std::vector<Window> windows;
+  std::uint32_t stride = 0;
 };
 
 class FrameProgram final : public DeviceFrame {
@@ -74,11 +78,14 @@ class FrameProgram final : public DeviceFrame {
  private:
   // Records the frame at t — evolution, transforms, unpack — into `commands`, leaving the six
   // fields in fields_ and the count of non-finite samples in probe_, with no barrier after the
-  // unpack (the caller's next use decides which one it needs). The caller holds mutex_ until
+  // unpack (the caller's next use decides which one it needs). With `stamps`, timestamps 1 and
+  // 2 of that pool are written after the evolution and after the transforms. The caller holds mutex_ until
   // the submission has completed: the buffers and the transform's workspace are this
   // program's alone.
-  void record_frame(VkCommandBuffer commands, double t) const;
-  Window window(const Allocation& allocation, VkDeviceSize start, VkDeviceSize bytes) const;
+  void record_frame(VkCommandBuffer commands, double t, VkQueryPool stamps) const;
+  Window whole(const Allocation& allocation) const;
+  Planes planes(const Allocation& allocation, int count, int bound, VkDeviceSize plane_bytes,
+                VkDeviceSize word_bytes) const;
   void dispatch(VkCommandBuffer commands, std::uint64_t invocations) const;
   [[noreturn]] void refuse(const std::string& rule) const;
   void release();
@@ -92,16 +99,14 @@ class FrameProgram final : public DeviceFrame {
   VkDeviceSize fields_bytes_ = 0;
   // Device memory: the waves' tables (written once), the spectra and their transforms (the
   // same buffer for the in-place c2c batch), the six fields and the probe.
-  Allocation waves_, lambda_over_k_, omega_, tables_, spectra_, transformed_storage_, fields_,
-      probe_;
+  Allocation waves_, lambda_over_k_, omega_, spectra_, transformed_storage_, fields_, probe_;
   Allocation staging_;  // host visible: the six fields, then the probe's count
   const Allocation& transformed() const { return pairs_ ? spectra_ : transformed_storage_; }
   const Pipeline* evolve_ = nullptr;
   const Pipeline* unpack_ = nullptr;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet evolve_set_ = VK_NULL_HANDLE, unpack_set_ = VK_NULL_HANDLE;
-  EvolveConstants evolve_constants_;
-  UnpackConstants unpack_constants_;
+  std::vector<std::byte> evolve_push_, unpack_push_;  // header and scales (t set per frame)
   Workspace* workspace_ = nullptr;
   // One frame in flight per program: evaluate() is const and may be called from several
   // threads; they take turns on the buffers above.
@@ -114,19 +119,33 @@ void FrameProgram::refuse(const std::string& rule) const {
                                          context_->properties().deviceName));
 }
 
-Window FrameProgram::window(const Allocation& allocation, VkDeviceSize start,
-                            VkDeviceSize bytes) const {
-  const VkDeviceSize alignment = std::max<VkDeviceSize>(1, context_->limits().minStorageBufferOffsetAlignment);
-  Window w;
-  w.buffer = allocation.buffer;
-  w.offset = start / alignment * alignment;
-  w.range = start + bytes - w.offset;
-  w.base = std::uint32_t((start - w.offset) / real_);
-  if (w.range > context_->limits().maxStorageBufferRange) {
+Window FrameProgram::whole(const Allocation& allocation) const {
+  if (allocation.size > context_->limits().maxStorageBufferRange) {
     refuse(fmt::format("an array of {} bytes exceeds the device's maxStorageBufferRange of {} bytes",
-                       w.range, context_->limits().maxStorageBufferRange));
+                       allocation.size, context_->limits().maxStorageBufferRange));
   }
-  return w;
+  return {allocation.buffer, 0, allocation.size};
+}
+
+// `bound` bindings for `count` planes: pairs bind their 4 planes twice over, so that every
+// binding the shader declares is valid.
+Planes FrameProgram::planes(const Allocation& allocation, int count, int bound,
+                            VkDeviceSize plane_bytes, VkDeviceSize word_bytes) const {
+  const VkDeviceSize alignment = std::max<VkDeviceSize>(1, context_->limits().minStorageBufferOffsetAlignment);
+  Planes out;
+  if (plane_bytes % alignment != 0) {
+    out.windows.assign(std::size_t(bound), whole(allocation));
+    out.stride = std::uint32_t(plane_bytes / word_bytes);
+    return out;
+  }
+  if (plane_bytes > context_->limits().maxStorageBufferRange) {
+    refuse(fmt::format("a plane of {} bytes exceeds the device's maxStorageBufferRange of {} bytes",
+                       plane_bytes, context_->limits().maxStorageBufferRange));
+  }
+  for (int p = 0; p < bound; ++p) {
+    out.windows.push_back({allocation.buffer, VkDeviceSize(p % count) * plane_bytes, plane_bytes});
+  }
+  return out;
 }
 
 FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProgram& transform,
@@ -167,8 +186,8 @@ FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProg
                         " is not the synthesizer's batch of inverse transforms");
   }
 
-  // The tables, in the shaders' layouts: (a, b) interleaved per entry, then λ/|k|, ω, and the
-  // scales with kx and ky.
+  // The tables, in the shaders' layouts: (a, b) interleaved per entry (in fp32 two complex
+  // words), then λ/|k| and ω.
   const std::size_t entries = std::size_t(half_columns_) * ny_;
   const auto* a_re = static_cast<const std::byte*>(tables.a_re);
   const auto* a_im = static_cast<const std::byte*>(tables.a_im);
@@ -181,11 +200,6 @@ FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProg
     std::memcpy(&waves[(4 * e + 2) * real_], b_re + e * real_, real_);
     std::memcpy(&waves[(4 * e + 3) * real_], b_im + e * real_, real_);
   }
-  std::vector<std::byte> table_bytes((2 * kRealFields + nx_ + ny_) * real_);
-  std::memcpy(&table_bytes[0], tables.field_scale, kRealFields * real_);
-  std::memcpy(&table_bytes[kRealFields * real_], tables.inverse_scale, kRealFields * real_);
-  std::memcpy(&table_bytes[2 * kRealFields * real_], tables.kx, nx_ * real_);
-  std::memcpy(&table_bytes[(2 * kRealFields + nx_) * real_], tables.ky, ny_ * real_);
   struct Upload {
     Allocation* target;
     const void* data;
@@ -194,13 +208,16 @@ FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProg
   const std::vector<Upload> uploads = {
       {&waves_, waves.data(), waves.size()},
       {&lambda_over_k_, tables.lambda_over_k, entries * real_},
-      {&omega_, tables.omega, entries * sizeof(double)},
-      {&tables_, table_bytes.data(), table_bytes.size()}};
+      {&omega_, tables.omega, entries * sizeof(double)}};
 
   const VkDeviceSize count = VkDeviceSize(nx_) * ny_;
   const VkDeviceSize spectrum_plane = VkDeviceSize(spectrum_columns_) * ny_ * 2 * real_;
   const VkDeviceSize transformed_plane = pairs_ ? count * 2 * real_ : count * real_;
   fields_bytes_ = kFields * count * real_;
+  // fp32 unpacks two adjacent samples per invocation (frame_unpack.comp).
+  if (precision_ == Precision::f32 && count % 2 != 0) {
+    refuse("the fp32 unpack takes samples two at a time, and nx·ny is odd");
+  }
   try {
     std::size_t staged = 0;
     for (const auto& u : uploads) {
@@ -234,41 +251,45 @@ FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProg
     }
     context_->free(upload);
 
-    // The bindings. Evolution: tables 0–3, then the eight output planes (pairs: four, bound
-    // twice over so that every binding the shader declares is valid).
-    std::vector<Window> evolve_windows = {
-        window(waves_, 0, waves_.size), window(lambda_over_k_, 0, lambda_over_k_.size),
-        window(omega_, 0, omega_.size), window(tables_, 0, tables_.size)};
-    std::vector<Window> unpack_windows = {window(tables_, 0, tables_.size),
-                                          window(probe_, 0, probe_.size)};
-    const int planes = pairs_ ? 4 : kRealFields;
-    for (int p = 0; p < kRealFields; ++p) {
-      const Window s = window(spectra_, VkDeviceSize(p % planes) * spectrum_plane, spectrum_plane);
-      evolve_windows.push_back(s);
-      evolve_constants_.base[p] = s.base;
-      const Window d = window(transformed(), VkDeviceSize(p % planes) * transformed_plane, transformed_plane);
-      unpack_windows.push_back(d);
-      unpack_constants_.input_base[p] = d.base;
-    }
-    for (int f = 0; f < kFields; ++f) {
-      const Window w = window(fields_, VkDeviceSize(f) * count * real_, count * real_);
-      unpack_windows.push_back(w);
-      unpack_constants_.field_base[f] = w.base;
-    }
-    evolve_constants_.nx = nx_;
-    evolve_constants_.ny = ny_;
-    evolve_constants_.half_columns = half_columns_;
-    evolve_constants_.spectrum_columns = spectrum_columns_;
-    unpack_constants_.count = std::uint32_t(count);
+    // The bindings. Evolution: the three tables, then the eight output planes (complex words);
+    // unpack: the probe, the eight input planes and the six fields (64-bit words).
+    const int planes_used = pairs_ ? 4 : kRealFields;
+    const Planes spectra = planes(spectra_, planes_used, kRealFields, spectrum_plane, 2 * real_);
+    const Planes inputs = planes(transformed(), planes_used, kRealFields, transformed_plane, 8);
+    const Planes outputs = planes(fields_, kFields, kFields, count * real_, 8);
+    std::vector<Window> evolve_windows = {whole(waves_), whole(lambda_over_k_), whole(omega_)};
+    evolve_windows.insert(evolve_windows.end(), spectra.windows.begin(), spectra.windows.end());
+    std::vector<Window> unpack_windows = {whole(probe_)};
+    unpack_windows.insert(unpack_windows.end(), inputs.windows.begin(), inputs.windows.end());
+    unpack_windows.insert(unpack_windows.end(), outputs.windows.begin(), outputs.windows.end());
+
+    EvolveHeader evolve;
+    evolve.dkx = tables.dkx;
+    evolve.dky = tables.dky;
+    evolve.nx = nx_;
+    evolve.ny = ny_;
+    evolve.half_columns = half_columns_;
+    evolve.spectrum_columns = spectrum_columns_;
+    evolve.plane_stride = spectra.stride;
+    evolve_push_.resize(sizeof evolve + kRealFields * real_);
+    std::memcpy(evolve_push_.data(), &evolve, sizeof evolve);
+    std::memcpy(evolve_push_.data() + sizeof evolve, tables.field_scale, kRealFields * real_);
+    UnpackHeader unpack;
+    unpack.count = std::uint32_t(count);
+    unpack.input_stride = inputs.stride;
+    unpack.field_stride = outputs.stride;
+    unpack_push_.resize(sizeof unpack + kRealFields * real_);
+    std::memcpy(unpack_push_.data(), &unpack, sizeof unpack);
+    std::memcpy(unpack_push_.data() + sizeof unpack, tables.inverse_scale, kRealFields * real_);
 
     const std::vector<std::uint32_t> specialization = {kLocalSize, pairs_ ? 1u : 0u};
     const bool f64 = precision_ == Precision::f64;
     evolve_ = &context_->pipeline(f64 ? "frame_evolve_fp64" : "frame_evolve_fp32",
                                   frame_evolve_spirv(precision_), specialization, kEvolveBuffers,
-                                  0, sizeof(EvolveConstants));
+                                  0, std::uint32_t(evolve_push_.size()));
     unpack_ = &context_->pipeline(f64 ? "frame_unpack_fp64" : "frame_unpack_fp32",
                                   frame_unpack_spirv(precision_), specialization, kUnpackBuffers,
-                                  0, sizeof(UnpackConstants));
+                                  0, std::uint32_t(unpack_push_.size()));
     VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kEvolveBuffers + kUnpackBuffers};
     VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool_info.maxSets = 2;
@@ -316,8 +337,8 @@ void FrameProgram::release() {
   workspace_ = nullptr;
   if (pool_) vkDestroyDescriptorPool(context_->device(), pool_, nullptr);
   pool_ = VK_NULL_HANDLE;
-  for (Allocation* a : {&waves_, &lambda_over_k_, &omega_, &tables_, &spectra_,
-                        &transformed_storage_, &fields_, &probe_, &staging_}) {
+  for (Allocation* a : {&waves_, &lambda_over_k_, &omega_, &spectra_, &transformed_storage_,
+                        &fields_, &probe_, &staging_}) {
     if (a->buffer) context_->free(*a);
   }
 }
@@ -336,28 +357,32 @@ void FrameProgram::dispatch(VkCommandBuffer commands, std::uint64_t invocations)
   vkCmdDispatch(commands, std::uint32_t(x), std::uint32_t(y), 1);
 }
 
-void FrameProgram::record_frame(VkCommandBuffer commands, double t) const {
+void FrameProgram::record_frame(VkCommandBuffer commands, double t, VkQueryPool stamps) const {
   // After whatever the queue ran before (the previous frame read these buffers): a barrier,
   // then the probe's count back to 0. The evolution does not touch the probe; the barriers
   // FftProgram::record puts before its passes order the fill before the unpack.
   Context::barrier(commands);
   vkCmdFillBuffer(commands, probe_.buffer, 0, VK_WHOLE_SIZE, 0);
-  EvolveConstants constants = evolve_constants_;
-  constants.t = t;
+  std::vector<std::byte> push = evolve_push_;
+  std::memcpy(push.data() + offsetof(EvolveHeader, t), &t, sizeof t);
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, evolve_->pipeline);
   vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, evolve_->layout, 0, 1,
                           &evolve_set_, 0, nullptr);
-  vkCmdPushConstants(commands, evolve_->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof constants,
-                     &constants);
+  vkCmdPushConstants(commands, evolve_->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                     std::uint32_t(push.size()), push.data());
   dispatch(commands, std::uint64_t(half_columns_) * ny_);
+  if (stamps) vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, stamps, 1);
   // A barrier before each pass (the evolution's writes before the first) and after the last.
   transform_.record(commands, *workspace_, spectra_.buffer, transformed().buffer);
+  if (stamps) vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, stamps, 2);
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, unpack_->pipeline);
   vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, unpack_->layout, 0, 1,
                           &unpack_set_, 0, nullptr);
   vkCmdPushConstants(commands, unpack_->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                     sizeof unpack_constants_, &unpack_constants_);
-  dispatch(commands, std::uint64_t(nx_) * ny_);
+                     std::uint32_t(unpack_push_.size()), unpack_push_.data());
+  // fp32: two samples per invocation.
+  const std::uint64_t samples = std::uint64_t(nx_) * ny_;
+  dispatch(commands, precision_ == Precision::f32 ? samples / 2 : samples);
 }
 
 void stamp(const Slot& slot, std::uint32_t query) {
@@ -385,9 +410,9 @@ std::size_t FrameProgram::evaluate(double t, std::span<std::byte> fields,
   check(vkBeginCommandBuffer(slot.commands, &begin), "vkBeginCommandBuffer");
   if (slot.timestamps) vkCmdResetQueryPool(slot.commands, slot.timestamps, 0, kTimestamps);
   stamp(slot, 0);
-  record_frame(slot.commands, t);
+  record_frame(slot.commands, t, slot.timestamps);
+  stamp(slot, 3);
   Context::barrier(slot.commands);  // the unpack's writes before the copies read them
-  stamp(slot, 1);
   const VkBufferCopy frame{0, 0, fields_bytes_};
   vkCmdCopyBuffer(slot.commands, fields_.buffer, staging_.buffer, 1, &frame);
   const VkBufferCopy probe{0, fields_bytes_, sizeof(std::uint32_t)};
@@ -397,8 +422,6 @@ std::size_t FrameProgram::evaluate(double t, std::span<std::byte> fields,
   host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
   vkCmdPipelineBarrier(slot.commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                        0, 1, &host, 0, nullptr, 0, nullptr);
-  stamp(slot, 2);
-  stamp(slot, 3);
   check(vkEndCommandBuffer(slot.commands), "vkEndCommandBuffer");
   context_->submit_and_wait(slot);
   const auto* staged = static_cast<const std::byte*>(staging_.mapped);
@@ -406,8 +429,9 @@ std::size_t FrameProgram::evaluate(double t, std::span<std::byte> fields,
   std::uint32_t non_finite = 0;
   std::memcpy(&non_finite, staged + fields_bytes_, sizeof non_finite);
   const auto seconds = context_->timestamp_seconds(slot);
-  timings.device_seconds = seconds[1] - seconds[0];
-  timings.download_seconds = seconds[2] - seconds[1];
+  timings.device_seconds = seconds[3] - seconds[0];
+  timings.evolve_seconds = seconds[1] - seconds[0];
+  timings.unpack_seconds = seconds[3] - seconds[2];
   return non_finite;
 }
 

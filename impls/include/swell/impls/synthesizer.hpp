@@ -36,11 +36,12 @@ Packing packing_from_string(const std::string& name);
 std::complex<double> initial_amplitude(const reference::OceanCase& ocean_case, int n, int m);
 
 // Where one frame's time went, by the device's own clock: the evolution, the transforms and
-// the unpack (device_seconds), then the copy of the six fields for the host
-// (download_seconds). Zeros for host backends, and on a device without timestamps.
+// the unpack together (device_seconds, before the fields' download), and the evolution and
+// the unpack alone. Zeros for host backends, and on a device without timestamps.
 struct FrameTimings {
   double device_seconds = 0;
-  double download_seconds = 0;
+  double evolve_seconds = 0;
+  double unpack_seconds = 0;
 };
 
 struct SynthesizerOptions {
