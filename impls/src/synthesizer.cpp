@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "device_frame.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/phase.hpp"
 #include "swell/reference/wave_noise.hpp"
@@ -365,8 +366,11 @@ struct Synthesizer::State {
   std::vector<float> kx32, ky32;  // per column of a full row (FFT order), per row
   std::vector<double> kx64, ky64;
   // The packed spectra, and the fields the transforms make of them (the same buffer when the
-  // backend transforms in place).
+  // backend transforms in place). Host backends only.
   std::unique_ptr<Buffer> spectra, transformed_storage;
+  // A device-resident backend's frame (device_frame.hpp), which holds the waves on the device
+  // and records `plan` into its own submission; declared after `plan`, so destroyed before it.
+  std::unique_ptr<DeviceFrame> device_frame;
   Buffer& transformed() const { return transformed_storage ? *transformed_storage : *spectra; }
 
   std::size_t real_bytes() const { return real_size(options.precision); }
@@ -393,6 +397,8 @@ struct Synthesizer::State {
   }
   template <typename Real>
   void fill_waves(Waves<Real>& waves);
+  template <typename Real>
+  void make_device_frame();
   template <typename Real>
   void assemble(double t) const;
   template <typename Real>
@@ -437,9 +443,12 @@ Synthesizer::Synthesizer(OceanCase ocean_case, SynthesizerOptions options)
     s.spectrum_columns = s.half_columns;
   }
   s.plan = s.backend->plan(spec);
-  s.spectra = s.backend->allocate(spec.input_bytes());
-  if (spec.placement == Placement::out_of_place) {
-    s.transformed_storage = s.backend->allocate(spec.output_bytes());
+  const bool on_device = s.backend->capabilities().device_resident;
+  if (!on_device) {
+    s.spectra = s.backend->allocate(spec.input_bytes());
+    if (spec.placement == Placement::out_of_place) {
+      s.transformed_storage = s.backend->allocate(spec.output_bytes());
+    }
   }
 
   s.kx64.resize(s.nx);
@@ -449,6 +458,38 @@ Synthesizer::Synthesizer(OceanCase ocean_case, SynthesizerOptions options)
   s.kx32.assign(s.kx64.begin(), s.kx64.end());
   s.ky32.assign(s.ky64.begin(), s.ky64.end());
   if (s.options.precision == Precision::f32) s.fill_waves(s.waves32); else s.fill_waves(s.waves64);
+  if (on_device) {
+    if (s.options.precision == Precision::f32) s.make_device_frame<float>(); else s.make_device_frame<double>();
+  }
+}
+
+// The waves go to the device once; the host's copies are then never read again and are freed
+// (max_omega, which evaluate() checks times against, is kept).
+template <typename Real>
+void Synthesizer::State::make_device_frame() {
+#ifdef SWELL_HAVE_VULKAN
+  const auto& w = waves<Real>();
+  DeviceFrameTables tables;
+  tables.precision = options.precision;
+  tables.pairs = packing == Packing::complex_pairs;
+  tables.nx = nx;
+  tables.ny = ny;
+  tables.a_re = w.a_re.data();
+  tables.a_im = w.a_im.data();
+  tables.b_re = w.b_re.data();
+  tables.b_im = w.b_im.data();
+  tables.lambda_over_k = w.lambda_over_k.data();
+  tables.omega = omega.data();
+  tables.dkx = ocean_case.grid.dkx();
+  tables.dky = ocean_case.grid.dky();
+  tables.field_scale = scales<Real>(false);
+  tables.inverse_scale = scales<Real>(true);
+  device_frame = make_vulkan_frame(*backend, *plan, tables);
+  if constexpr (std::is_same_v<Real, float>) waves32 = {}; else waves64 = {};
+  std::vector<double>().swap(omega);
+#else
+  throw InternalError("backend " + backend->name() + " is device resident in a build without Vulkan");
+#endif
 }
 
 template <typename Real>
@@ -630,6 +671,10 @@ bool Synthesizer::State::unpack(std::byte* fields) const {
 }
 
 void Synthesizer::evaluate(double t, std::span<std::byte> fields) const {
+  (void)evaluate_timed(t, fields);
+}
+
+FrameTimings Synthesizer::evaluate_timed(double t, std::span<std::byte> fields) const {
   const auto& s = *state_;
   if (fields.size() < frame_bytes()) {
     throw InvalidInput("Synthesizer::evaluate: output of " + std::to_string(fields.size()) +
@@ -642,11 +687,19 @@ void Synthesizer::evaluate(double t, std::span<std::byte> fields) const {
         "phase can carry to double precision (reference/phase.hpp); ω ≤ {:.4g} rad/s on this grid",
         t, s.max_omega * std::abs(t), reference::kLargestPhase, s.max_omega));
   }
+  FrameTimings timings;
+  if (s.device_frame) {
+    if (s.device_frame->evaluate(t, fields, timings) != 0) {
+      throw InternalError(s.describe_non_finite(t, fields));
+    }
+    return timings;
+  }
   const bool f32 = s.options.precision == Precision::f32;
   if (f32) s.assemble<float>(t); else s.assemble<double>(t);
   s.plan->execute(*s.spectra, s.transformed());
   const bool finite = f32 ? s.unpack<float>(fields.data()) : s.unpack<double>(fields.data());
   if (!finite) throw InternalError(s.describe_non_finite(t, fields));
+  return timings;
 }
 
 reference::FieldFrame Synthesizer::frame(double t) const {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cli_support.hpp"
+#include "vulkan_test_support.hpp"
 #include "swell/impls/synthesizer.hpp"
 #include "swell/validation/case_file.hpp"
 #include "swell/validation/frame_io.hpp"
@@ -271,6 +272,45 @@ TEST_F(OceanCli, SynthJson) {
   const auto parsed = nlohmann::json::parse(quiet.output);
   EXPECT_EQ(parsed.at("files").size(), 6u);  // six fields, one .npy each
   EXPECT_EQ(parsed.at("format"), "npy");
+}
+
+// The vulkan backend end to end: `swell synth --impl vulkan` writes frames (synthesized on the
+// device, docs/synthesis.md §vulkan) that the gate passes and that equal the host synthesizer's
+// within the fp32 bound of the synthesizer tests, and `swell check ocean --impl vulkan` passes
+// every check on every built-in case in fp32 and fp64.
+TEST_F(OceanCli, VulkanSynthAndCheckOceanPass) {
+  SWELL_VULKAN_OR_SKIP();
+  const CliRun synth = swell("synth --model jonswap --hs 2.5 --tp 7 --impl vulkan --n 64 --length 300 "
+                             "--frames 3 --dt 0.5 --seed 5 --format npy --out " + path("vulkan"));
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  const auto c = swell::validation::read_case_file(dir_ / "vulkan" / "case.toml");
+  const FrameSequence read = swell::validation::read_frames(c);
+  swell::impls::SynthesizerOptions options;
+  options.backend = "fftw";
+  options.precision = swell::impls::Precision::f64;
+  const FrameSequence want = swell::impls::Synthesizer(c.ocean, options).frames();
+  ASSERT_EQ(read.frames.size(), want.frames.size());
+  for (std::size_t f = 0; f < want.frames.size(); ++f) {
+    const auto& got = read.frames[f].fields.at(Field::height);
+    const auto& reference = want.frames[f].fields.at(Field::height);
+    double difference = 0, norm = 0;
+    for (std::size_t k = 0; k < reference.size(); ++k) {
+      difference += (got[k] - reference[k]) * (got[k] - reference[k]);
+      norm += reference[k] * reference[k];
+    }
+    EXPECT_LE(std::sqrt(difference / norm), 2e-6) << "frame " << f;  // fp32: synth's default
+  }
+  const CliRun gate = swell("gate --case " + path("vulkan/case.toml"));
+  EXPECT_EQ(gate.exit_code, 0) << gate.output;
+
+  const CliRun check = swell("check ocean --impl vulkan --n 64 --json - --report-dir " + path("report"));
+  ASSERT_EQ(check.exit_code, 0) << check.output;
+  const auto doc = nlohmann::json::parse(check.output.substr(check.output.find('{')));
+  ASSERT_EQ(doc.at("ocean").size(), 8u);  // 4 built-in cases × fp32, fp64
+  for (const auto& row : doc.at("ocean")) {
+    EXPECT_EQ(row.at("backend"), "vulkan");
+    EXPECT_TRUE(row.at("pass").get<bool>()) << row.dump();
+  }
 }
 
 TEST_F(OceanCli, SynthBadInputExitsTwoNamingTheProblem) {

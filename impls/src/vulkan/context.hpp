@@ -145,5 +145,8 @@ class DeviceBuffer final : public Buffer {
 
 // The SPIR-V of the shaders in impls/shaders, compiled by glslc at build time.
 const std::vector<std::uint32_t>& fft_lines_spirv(Precision precision);
+// The synthesizer's frame kernels (frame.hpp): the spectra at time t, and the six fields.
+const std::vector<std::uint32_t>& frame_evolve_spirv(Precision precision);
+const std::vector<std::uint32_t>& frame_unpack_spirv(Precision precision);
 
 }  // namespace swell::impls::vk

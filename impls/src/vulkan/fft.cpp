@@ -561,6 +561,7 @@ class VulkanBackend final : public Backend {
     return std::make_unique<DeviceBuffer>(context_, bytes);
   }
   const Context& context() const { return *context_; }
+  const std::shared_ptr<const Context>& shared_context() const { return context_; }
 
  private:
   std::shared_ptr<const Context> context_;
@@ -573,6 +574,16 @@ const VulkanPlan& vulkan_plan(const Plan& plan) {
 }
 
 }  // namespace
+
+const FftProgram* program_of(const Plan& plan) {
+  const auto* p = dynamic_cast<const VulkanPlan*>(&plan);
+  return p ? &p->program() : nullptr;
+}
+
+std::shared_ptr<const Context> context_of(const Backend& backend) {
+  const auto* b = dynamic_cast<const VulkanBackend*>(&backend);
+  return b ? b->shared_context() : nullptr;
+}
 
 }  // namespace swell::impls::vk
 

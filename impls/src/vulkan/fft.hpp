@@ -86,4 +86,9 @@ class FftProgram {
   mutable std::vector<Workspace*> free_workspaces_;
 };
 
+// The program of a plan of the vulkan backend, and a vulkan backend's context (nullptr for
+// another backend's): for the synthesizer, which records the plan into its own frame submission.
+const FftProgram* program_of(const Plan& plan);
+std::shared_ptr<const Context> context_of(const Backend& backend);
+
 }  // namespace swell::impls::vk

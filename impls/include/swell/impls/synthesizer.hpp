@@ -35,6 +35,15 @@ Packing packing_from_string(const std::string& name);
 // in double precision; 0 where the grid carries no energy.
 std::complex<double> initial_amplitude(const reference::OceanCase& ocean_case, int n, int m);
 
+// Where one frame's time went, by the device's own clock: the evolution, the transforms and
+// the unpack together (device_seconds, before the fields' download), and the evolution and
+// the unpack alone. Zeros for host backends, and on a device without timestamps.
+struct FrameTimings {
+  double device_seconds = 0;
+  double evolve_seconds = 0;
+  double unpack_seconds = 0;
+};
+
 struct SynthesizerOptions {
   std::string backend = "fftw";  // any registered backend, with options ("fftw:threads=2")
   Precision precision = Precision::f32;
@@ -57,7 +66,15 @@ class Synthesizer {
 
   // All six fields at time t into `fields`: 6 consecutive arrays of nx·ny reals of the
   // synthesizer's precision (float or double), in reference::kAllFields order.
+  //
+  // With a device-resident backend (vulkan) the waves live on the device from construction on
+  // and a frame is one submission there: the spectra at t, the transforms and the six fields,
+  // copied back only because `fields` is host memory (docs/synthesis.md §vulkan); frames are
+  // then serialized, so several threads may call evaluate() on one synthesizer. The host
+  // backends assemble into one spectrum buffer per synthesizer: give each thread its own.
   void evaluate(double t, std::span<std::byte> fields) const;
+  // The same, with the device's timings of the frame (benchmarks).
+  FrameTimings evaluate_timed(double t, std::span<std::byte> fields) const;
   std::size_t frame_bytes() const;  // bytes `fields` must hold
   // About the memory a synthesizer of this grid and precision holds, with one frame converted
   // to double (frame()): what a command checks against the machine before building one.
