@@ -38,6 +38,26 @@ std::vector<std::complex<float>> random_complex(std::size_t n, unsigned seed) {
   return v;
 }
 
+// The four kinds of transform, for the sweeps below.
+constexpr std::pair<Kind, Direction> kKinds[] = {{Kind::c2c, Direction::forward},
+                                                 {Kind::c2c, Direction::inverse},
+                                                 {Kind::r2c, Direction::forward},
+                                                 {Kind::c2r, Direction::inverse}};
+
+// Relative L2 and L∞ error against the long-double oracle within the transform's bound.
+void expect_within_bound(const Backend& backend, int nx, int ny, Kind kind, Direction direction,
+                         Precision precision, unsigned seed) {
+  TransformSpec spec;
+  spec.nx = nx;
+  spec.ny = ny;
+  spec.kind = kind;
+  spec.direction = direction;
+  spec.precision = precision;
+  const auto r = measure_transform_accuracy(backend, spec, seed);
+  EXPECT_LE(r.rel_l2, r.bound) << spec.describe() << " against " << r.oracle;
+  EXPECT_LE(r.rel_linf, r.bound) << spec.describe() << " against " << r.oracle;
+}
+
 TEST(Vulkan, Fp32At2048SquaredWithinFiveTimesTenToTheMinusSeven) {
   VULKAN_OR_SKIP(backend);
   TransformSpec spec;
@@ -59,18 +79,8 @@ TEST(Vulkan, EveryPowerOfTwoLengthOnEitherAxis) {
   for (Precision precision : backend->capabilities().precisions) {
     for (int n = 1; n <= 4096; n *= 2) {
       for (auto [nx, ny] : {std::pair{n, 2}, std::pair{4, n}}) {
-        for (auto [kind, direction] : {std::pair{Kind::c2c, Direction::forward},
-                                       std::pair{Kind::c2r, Direction::inverse}}) {
-          TransformSpec spec;
-          spec.nx = nx;
-          spec.ny = ny;
-          spec.kind = kind;
-          spec.direction = direction;
-          spec.precision = precision;
-          const auto r = measure_transform_accuracy(*backend, spec, 11);
-          EXPECT_LE(r.rel_l2, r.bound) << spec.describe() << " against " << r.oracle;
-          EXPECT_LE(r.rel_linf, r.bound) << spec.describe() << " against " << r.oracle;
-        }
+        expect_within_bound(*backend, nx, ny, Kind::c2c, Direction::forward, precision, 11);
+        expect_within_bound(*backend, nx, ny, Kind::c2r, Direction::inverse, precision, 11);
       }
     }
   }
@@ -83,20 +93,7 @@ TEST(Vulkan, LinesBeyondSharedMemoryRunAsTwoPassesOnEitherAxis) {
   for (Precision precision : backend->capabilities().precisions) {
     const int long_side = precision == Precision::f32 ? 32768 : 16384;
     for (auto [nx, ny] : {std::pair{long_side, 2}, std::pair{4, long_side}}) {
-      for (auto [kind, direction] : {std::pair{Kind::c2c, Direction::forward},
-                                     std::pair{Kind::c2c, Direction::inverse},
-                                     std::pair{Kind::r2c, Direction::forward},
-                                     std::pair{Kind::c2r, Direction::inverse}}) {
-        TransformSpec spec;
-        spec.nx = nx;
-        spec.ny = ny;
-        spec.kind = kind;
-        spec.direction = direction;
-        spec.precision = precision;
-        const auto r = measure_transform_accuracy(*backend, spec, 7);
-        EXPECT_LE(r.rel_l2, r.bound) << spec.describe() << " against " << r.oracle;
-        EXPECT_LE(r.rel_linf, r.bound) << spec.describe() << " against " << r.oracle;
-      }
+      for (auto [kind, direction] : kKinds) expect_within_bound(*backend, nx, ny, kind, direction, precision, 7);
     }
   }
 }
