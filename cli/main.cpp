@@ -29,6 +29,11 @@ void write_json(const std::string& destination, const nlohmann::json& document) 
 
 std::string vulkan_device_line() {
 #ifdef SWELL_HAVE_VULKAN
+  try {
+    impls::make_backend("vulkan");
+  } catch (const std::exception& e) {
+    return std::string("no device (") + e.what() + ")";
+  }
   return impls::vulkan_device_description("vulkan");
 #else
   return "";
