@@ -18,17 +18,10 @@ namespace {
 using namespace swell::impls;
 using swell::validation::measure_transform_accuracy;
 
-std::unique_ptr<Backend> vulkan(const std::string& name = "vulkan") {
-  try {
-    return make_backend(name);
-  } catch (const UnsupportedTransform& e) {
-    return nullptr;
-  }
-}
-
-#define VULKAN_OR_SKIP(backend)                                               \
-  const auto backend = vulkan();                                              \
-  if (!backend) SWELL_SKIP_WITHOUT_VULKAN(vulkan_device_description("vulkan"))
+// `backend`: the vulkan backend, or the test returns (skipped or, required, failed).
+#define VULKAN_OR_SKIP(backend)                             \
+  const auto backend = swell::test::vulkan_or_skip();       \
+  if (!backend) return
 
 std::vector<std::complex<float>> random_complex(std::size_t n, unsigned seed) {
   std::mt19937 engine(seed);
