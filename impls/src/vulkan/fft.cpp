@@ -274,7 +274,6 @@ void FftProgram::add_line_pass(std::uint32_t n, std::uint32_t lines_lo, std::uin
   Pass pass;
   pass.pipeline = &context_->pipeline(spec_.precision == Precision::f32 ? "fft_lines_fp32" : "fft_lines_fp64",
                                       spirv, specialization, 4, 2, 0);
-  pass.constants = c;
   pass.source = source;
   pass.destination = destination;
   pass.groups_x = (lines_lo + lines - 1) / lines;

@@ -21,8 +21,7 @@ struct PassConstants {
 enum class Target { input, output, temp_a, temp_b };
 
 struct Pass {
-  const Pipeline* pipeline = nullptr;
-  PassConstants constants;
+  const Pipeline* pipeline = nullptr;  // its addressing and flags are specialization constants
   Target source = Target::input, destination = Target::output;
   std::uint32_t groups_x = 1, groups_y = 1;
   int line_twiddles = 0, split_twiddles = 0;   // indices into FftProgram::twiddles
