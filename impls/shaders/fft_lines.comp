@@ -2,11 +2,12 @@
 // One pass of swell's Vulkan FFT (docs/vulkan.md): a batch of 1-D transforms of N points along
 // "lines" of a 2-D array, each line held whole in shared memory, transformed there by Stockham
 // autosort stages (Bainville's OpenCL FFT formulation: stage p reads x[i + j·N/R], writes
-// x[(i − k)R + k + q·p], k = i mod p) of radix 16 after one first stage of radix 2, 4, 8 or 16; the
-// first stage reads the array and the last writes it, so a line crosses shared memory once
-// per stage boundary. Each thread holds 16 points in registers per stage; two barriers a stage.
+// x[(i − k)R + k + q·p], k = i mod p): a first stage of radix 2 (N = 2 only), 4, 8 or 16, at
+// most one radix-8 stage, then radix-16 ones; the first stage reads the array and the last
+// writes it, so a line crosses shared memory once per stage boundary. Each thread holds 16
+// points in registers per stage; one barrier a stage with two copies in shared memory, else two.
 //
-// Addressing (push constants; strides in elements, complex or real): line (lo, hi) of batch b,
+// Addressing (specialization constants; strides in elements, complex or real): line (lo, hi) of batch b,
 // element e lies at  b·batch + hi·hi_stride + lo·lo_stride + e·element_stride.  The x axis has
 // element_stride 1 (or N2 in a two-pass split), the y axis lo_stride 1 with the columns of a
 // workgroup adjacent, so a tile of columns is read row by row rather than transposed. On the x
@@ -69,6 +70,7 @@ layout(constant_id = 19) const uint SPLIT_N = 1;
 // writes the other, one barrier a stage and no registers held across it (lavapipe saves them
 // at every barrier); else one copy, read, barrier, write, barrier.
 layout(constant_id = 20) const uint PING_PONG = 0;
+layout(constant_id = 21) const uint RADIX8_STAGES = 0;  // after the first stage, before the radix-16 ones
 shared cplx line[SHARED_POINTS * (1u + PING_PONG)];
 uint current = 0u;  // offset of the copy the next stage reads; writes go to the other
 
@@ -78,6 +80,15 @@ void swap_copies() {
 }
 
 bool has(uint flag) { return (FLAGS & flag) != 0u; }
+
+// A pass over adjacent lines (the y axis's columns, or the first pass of an x-axis split): the
+// invocations of a SIMD group take neighbouring lines in every stage and shared memory holds
+// element e of line l at e·LINES + l, so that a stage's loads and stores are contiguous across
+// lanes (lavapipe's 8 lanes read one cache line) — not N apart, which maps every lane to the
+// same L1 set (a 512-point fp32 line is 4 KiB) and made the column pass 1.5× the row pass.
+bool columns_pass() { return has(SOURCE_LINE_FASTEST) && has(DESTINATION_LINE_FASTEST); }
+uint shared_index(uint l, uint e) { return columns_pass() ? e * LINES + l : l * N + e; }
+uint element_pitch() { return columns_pass() ? LINES : 1u; }
 
 cplx twiddle(uint j) {  // e^(∓2πij/N)
   cplx w = line_twiddle[j];
@@ -175,12 +186,15 @@ uvec2 line_and_index(uint b, uint per_line, bool lines_fastest) {
 
 cplx fetch(uint l, uint e) {
   const uint lo = gl_WorkGroupID.x * LINES + l;
+  // Every workgroup full (LINES divides LINES_LO, always so for powers of two): no test, so no
+  // divergent control flow for the driver to mask.
+  if (LINES_LO % LINES == 0u) return load(gl_WorkGroupID.z, gl_WorkGroupID.y, lo, e);
   return lo < LINES_LO ? load(gl_WorkGroupID.z, gl_WorkGroupID.y, lo, e) : cplx(0);
 }
 
 void put(uint l, uint e, cplx v) {
   const uint lo = gl_WorkGroupID.x * LINES + l;
-  if (lo >= LINES_LO) return;
+  if (LINES_LO % LINES != 0u && lo >= LINES_LO) return;
   if (has(SPLIT_TWIDDLE)) {
     const uint n2 = has(SPLIT_BY_HI) ? gl_WorkGroupID.y : lo;
     const cplx w = split_twiddle[(n2 * e) % SPLIT_N];
@@ -201,18 +215,19 @@ void write16(bool to_array, uint l, uint first, uint stride, cplx y0, cplx y1, c
     put(l, first + 12u * stride, y12); put(l, first + 13u * stride, y13); put(l, first + 14u * stride, y14); put(l, first + 15u * stride, y15);
     return;
   }
-  const uint at = (PING_PONG == 1u ? SHARED_POINTS - current : current) + l * N + first;
-  line[at] = y0; line[at + stride] = y1; line[at + 2u * stride] = y2; line[at + 3u * stride] = y3;
-  line[at + 4u * stride] = y4; line[at + 5u * stride] = y5; line[at + 6u * stride] = y6; line[at + 7u * stride] = y7;
-  line[at + 8u * stride] = y8; line[at + 9u * stride] = y9; line[at + 10u * stride] = y10; line[at + 11u * stride] = y11;
-  line[at + 12u * stride] = y12; line[at + 13u * stride] = y13; line[at + 14u * stride] = y14; line[at + 15u * stride] = y15;
+  const uint at = (PING_PONG == 1u ? SHARED_POINTS - current : current) + shared_index(l, first);
+  const uint s = stride * element_pitch();
+  line[at] = y0; line[at + s] = y1; line[at + 2u * s] = y2; line[at + 3u * s] = y3;
+  line[at + 4u * s] = y4; line[at + 5u * s] = y5; line[at + 6u * s] = y6; line[at + 7u * s] = y7;
+  line[at + 8u * s] = y8; line[at + 9u * s] = y9; line[at + 10u * s] = y10; line[at + 11u * s] = y11;
+  line[at + 12u * s] = y12; line[at + 13u * s] = y13; line[at + 14u * s] = y14; line[at + 15u * s] = y15;
 }
 
 // Values of butterfly b (radix R < 16: 16/R of them per thread, t + u·T) to the array or to
 // shared memory, x[i·R + q] in the first stage.
 void put_small(bool to_array, uvec2 li, uint q, cplx v) {
   if (to_array) put(li.x, q, v);  // the only stage: N = R, i = 0
-  else line[(PING_PONG == 1u ? SHARED_POINTS - current : current) + li.x * N + li.y * FIRST_RADIX + q] = v;
+  else line[(PING_PONG == 1u ? SHARED_POINTS - current : current) + shared_index(li.x, li.y * FIRST_RADIX + q)] = v;
 }
 
 // The first stage (span 1, no twiddles) of radix FIRST_RADIX, read from the array itself:
@@ -286,31 +301,80 @@ void radix16_stage(const uint p) {
   const uint t = gl_LocalInvocationID.x;
   const bool last = 16u * p == N;
   const uint step = N / 16u;
-  const uvec2 li = line_and_index(t, step, last && has(DESTINATION_LINE_FASTEST));
-  const uint l = li.x, i = li.y, k = i & (p - 1u), at = current + l * N + i;
+  const uvec2 li = line_and_index(t, step, columns_pass() || (last && has(DESTINATION_LINE_FASTEST)));
+  const uint l = li.x, i = li.y, k = i & (p - 1u), at = current + shared_index(l, i);
+  const uint step_at = step * element_pitch();
   const uint w = k * (N / (16u * p));  // twiddle index of j = 1
   const cplx w1 = twiddle(w), w2 = twiddle(2u * w), w4 = twiddle(4u * w), w8 = twiddle(8u * w);
   const cplx w3 = mul(w2, w1), w5 = mul(w4, w1), w6 = mul(w4, w2), w7 = mul(w4, w3);
   v0 = line[at];
-  v1 = mul(line[at + step], w1);
-  v2 = mul(line[at + 2u * step], w2);
-  v3 = mul(line[at + 3u * step], w3);
-  v4 = mul(line[at + 4u * step], w4);
-  v5 = mul(line[at + 5u * step], w5);
-  v6 = mul(line[at + 6u * step], w6);
-  v7 = mul(line[at + 7u * step], w7);
-  v8 = mul(line[at + 8u * step], w8);
-  v9 = mul(line[at + 9u * step], mul(w8, w1));
-  v10 = mul(line[at + 10u * step], mul(w8, w2));
-  v11 = mul(line[at + 11u * step], mul(w8, w3));
-  v12 = mul(line[at + 12u * step], mul(w8, w4));
-  v13 = mul(line[at + 13u * step], mul(w8, w5));
-  v14 = mul(line[at + 14u * step], mul(w8, w6));
-  v15 = mul(line[at + 15u * step], mul(w8, w7));
+  v1 = mul(line[at + step_at], w1);
+  v2 = mul(line[at + 2u * step_at], w2);
+  v3 = mul(line[at + 3u * step_at], w3);
+  v4 = mul(line[at + 4u * step_at], w4);
+  v5 = mul(line[at + 5u * step_at], w5);
+  v6 = mul(line[at + 6u * step_at], w6);
+  v7 = mul(line[at + 7u * step_at], w7);
+  v8 = mul(line[at + 8u * step_at], w8);
+  v9 = mul(line[at + 9u * step_at], mul(w8, w1));
+  v10 = mul(line[at + 10u * step_at], mul(w8, w2));
+  v11 = mul(line[at + 11u * step_at], mul(w8, w3));
+  v12 = mul(line[at + 12u * step_at], mul(w8, w4));
+  v13 = mul(line[at + 13u * step_at], mul(w8, w5));
+  v14 = mul(line[at + 14u * step_at], mul(w8, w6));
+  v15 = mul(line[at + 15u * step_at], mul(w8, w7));
   dft16(v0, v1, v2, v3, v4, v5, v6, v7, v8, v9, v10, v11, v12, v13, v14, v15);
   if (!last && PING_PONG == 0u) barrier();
   write16(last, l, last ? i : (i - k) * 16u + k, last ? step : p,
           v0, v4, v8, v12, v1, v5, v9, v13, v2, v6, v10, v14, v3, v7, v11, v15);
+  if (!last) barrier();
+  swap_copies();
+}
+
+// A radix-8 Stockham stage of span p > 1, two butterflies a thread (i = t and t + N/16 of
+// its line): butterfly i (k = i mod p) reads x[i + j·N/8] times w_{8p}^(jk) and writes
+// x[(i − k)·8 + k + q·p]; the last stage (8p = N) writes element i + q·N/8 of the array.
+void radix8_pair(const uint p, const uint l, const uint i, inout cplx x0,
+                 inout cplx x1, inout cplx x2, inout cplx x3, inout cplx x4, inout cplx x5,
+                 inout cplx x6, inout cplx x7) {
+  const uint step = N / 8u, k = i & (p - 1u), at = current + shared_index(l, i);
+  const uint step_at = step * element_pitch();
+  const uint w = k * (N / (8u * p));
+  const cplx w1 = twiddle(w), w2 = twiddle(2u * w), w4 = twiddle(4u * w);
+  const cplx w3 = mul(w2, w1);
+  x0 = line[at];
+  x1 = mul(line[at + step_at], w1);
+  x2 = mul(line[at + 2u * step_at], w2);
+  x3 = mul(line[at + 3u * step_at], w3);
+  x4 = mul(line[at + 4u * step_at], w4);
+  x5 = mul(line[at + 5u * step_at], mul(w4, w1));
+  x6 = mul(line[at + 6u * step_at], mul(w4, w2));
+  x7 = mul(line[at + 7u * step_at], mul(w4, w3));
+  dft8(x0, x1, x2, x3, x4, x5, x6, x7);
+}
+void radix8_put(const uint p, const bool last, const uint l, const uint i, cplx x0, cplx x1,
+                cplx x2, cplx x3, cplx x4, cplx x5, cplx x6, cplx x7) {
+  const uint step = N / 8u, k = i & (p - 1u);
+  if (last) {
+    put(l, i, x0); put(l, i + step, x1); put(l, i + 2u * step, x2); put(l, i + 3u * step, x3);
+    put(l, i + 4u * step, x4); put(l, i + 5u * step, x5); put(l, i + 6u * step, x6); put(l, i + 7u * step, x7);
+    return;
+  }
+  const uint at = (PING_PONG == 1u ? SHARED_POINTS - current : current) + shared_index(l, (i - k) * 8u + k);
+  const uint s = p * element_pitch();
+  line[at] = x0; line[at + s] = x1; line[at + 2u * s] = x2; line[at + 3u * s] = x3;
+  line[at + 4u * s] = x4; line[at + 5u * s] = x5; line[at + 6u * s] = x6; line[at + 7u * s] = x7;
+}
+void radix8_stage(const uint p) {
+  const uint t = gl_LocalInvocationID.x, T = gl_WorkGroupSize.x;
+  const bool last = 8u * p == N;
+  const bool fastest = columns_pass() || (last && has(DESTINATION_LINE_FASTEST));
+  const uvec2 a = line_and_index(t, N / 8u, fastest), b = line_and_index(t + T, N / 8u, fastest);
+  radix8_pair(p, a.x, a.y, v0, v1, v2, v3, v4, v5, v6, v7);
+  radix8_pair(p, b.x, b.y, v8, v9, v10, v11, v12, v13, v14, v15);
+  if (!last && PING_PONG == 0u) barrier();
+  radix8_put(p, last, a.x, a.y, v0, v1, v2, v3, v4, v5, v6, v7);
+  radix8_put(p, last, b.x, b.y, v8, v9, v10, v11, v12, v13, v14, v15);
   if (!last) barrier();
   swap_copies();
 }
@@ -322,5 +386,7 @@ void main() {
     return;
   }
   first_stage();
-  for (uint p = FIRST_RADIX; p < N; p *= 16u) radix16_stage(p);
+  uint p = FIRST_RADIX;
+  for (uint stage = 0u; stage < RADIX8_STAGES; ++stage, p *= 8u) radix8_stage(p);
+  for (; p < N; p *= 16u) radix16_stage(p);
 }

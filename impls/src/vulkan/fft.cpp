@@ -241,9 +241,11 @@ void FftProgram::add_line_pass(std::uint32_t n, std::uint32_t lines_lo, std::uin
                                std::uint32_t destination_batch, int split_twiddles) {
   const auto& limits = context_->limits();
   const std::uint32_t capacity = shared_points(*context_, spec_.precision);
-  // Lines per workgroup: enough for ~1024 points (tiles of columns 8 wide or more up to 128;
-  // lavapipe's threads share out more, smaller workgroups better than fewer larger ones), at least 8 points (a thread's registers), never beyond shared memory.
-  std::uint32_t lines = std::max(1u, std::min(1024u, capacity) / n);
+  // Lines per workgroup: as many as shared memory holds (measured on lavapipe against 1024
+  // points a workgroup: 0.9× at 512² and 1024², the same within noise elsewhere; the column
+  // passes then read 8 or more adjacent columns, a cache line per SIMD group), never more than
+  // the pass has, at least 16 points (a thread's registers).
+  std::uint32_t lines = std::max(1u, capacity / n);
   lines = std::min(lines, std::bit_ceil(lines_lo));
   lines = std::max(lines, std::max(1u, 16u / n));
   // Threads: 16 points each (one radix-16 butterfly a stage).
@@ -254,9 +256,14 @@ void FftProgram::add_line_pass(std::uint32_t n, std::uint32_t lines_lo, std::uin
     throw InternalError(fmt::format("vulkan: {}: a {}-point line would need {} invocations, the "
                                     "device allows {}", spec_.describe(), n, threads, max_threads));
   }
-  // n = first_radix · 16^m.
-  constexpr std::uint32_t kFirstRadix[4] = {16, 2, 4, 8};
-  const std::uint32_t first_radix = n == 1 ? 1 : (n < 16 ? n : kFirstRadix[log2_of(n) % 4]);
+  // n = first_radix · 8^radix8_stages · 16^m. Measured on lavapipe (docs/vulkan.md): a first
+  // stage of radix 2 or 4 (eight or four butterflies a thread, read from the array) cost more
+  // than one radix-8 stage in its place, and two radix-8 stages more than 8·16 — so
+  // 32 = 4·8, 64 = 8·8, 128 = 16·8, 512 = 4·8·16, 1024 = 8·8·16, 2048 = 16·8·16.
+  constexpr std::uint32_t kFirstRadix[4] = {16, 4, 8, 16};
+  const std::uint32_t log2n = log2_of(n);
+  const std::uint32_t first_radix = n == 1 ? 1 : (n <= 16 ? n : kFirstRadix[log2n % 4]);
+  const std::uint32_t radix8_stages = (n > 16 && log2n % 4 != 0) ? 1 : 0;
   c.lines_lo = lines_lo;
   c.in_batch = per_batch_ ? 0 : source_batch;
   c.out_batch = per_batch_ ? 0 : destination_batch;
@@ -270,6 +277,7 @@ void FftProgram::add_line_pass(std::uint32_t n, std::uint32_t lines_lo, std::uin
   const bool ping_pong = 2 * std::size_t(n) * lines * 2 * real_size(spec_.precision) <=
                          limits.maxComputeSharedMemorySize;
   specialization.push_back(ping_pong ? 1 : 0);
+  specialization.push_back(radix8_stages);
   const auto& spirv = fft_lines_spirv(spec_.precision);
   Pass pass;
   pass.pipeline = &context_->pipeline(spec_.precision == Precision::f32 ? "fft_lines_fp32" : "fft_lines_fp64",
