@@ -1,4 +1,8 @@
 #version 450
+#ifdef SWELL_SHUFFLE
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_shuffle : require
+#endif
 // One pass of swell's Vulkan FFT (docs/vulkan.md): a batch of 1-D transforms of N points along
 // "lines" of a 2-D array, each line held whole in shared memory, transformed there by Stockham
 // autosort stages (Bainville's OpenCL FFT formulation: stage p reads x[i + j·N/R], writes
@@ -379,7 +383,130 @@ void radix8_stage(const uint p) {
   swap_copies();
 }
 
+#ifdef SWELL_SHUFFLE
+// The subgroup variant (fft_lines_shuffle_*, 16 ≤ N ≤ 2048; docs/vulkan.md §Kernels): one
+// radix-16 step in registers, at most one exchange through shared memory, the rest across the
+// lanes of a subgroup with subgroupShuffleXor — on lavapipe a shared-memory store and load cost
+// about 4.5 ns an invocation and a shuffle 0.2 ns (the lanes of a SIMD register). For a line
+// of N = 16·T points, thread t = lane + L·g (L = min(8, T) lanes, G = T/L groups):
+//   X[k1 + 16 (c + G d)] = Σ_lane w_L^(lane·d) w_T^(lane·c) Σ_g w_G^(g·c) Y[lane + L g][k1],
+//   Y[t][k1] = w_N^(t·k1) Σ_r w_16^(r·k1) x[t + T r]
+// (four-step twice: N = 16·T, T = G·L). Step A: x[t + T r] → DFT16 over r, twiddles. Step B
+// (G > 1): Y through shared memory so that thread (lane, g') holds, for k1 = g'·16/G + s, all
+// g (register s·G + g) → DFT_G, twiddles w_T^(lane·c). Step C (L > 1): an L×L transpose of
+// registers and lanes by shuffles (register bit ↔ lane bit, one XOR level a bit) → DFT_L.
+const uint LANES = N >= 128u ? 8u : N / 16u;
+const uint GROUPS = N / (16u * LANES);
+
+// The register that dft16 leaves X[k] in is 4 (k mod 4) + k div 4, and that map is its own
+// inverse: register ρ holds X[4 (ρ mod 4) + ρ div 4].
+uint dft16_index(uint rho) { return 4u * (rho % 4u) + rho / 4u; }
+
+// Register-lane transpose of a block of L registers: level s swaps register bit s with lane bit s.
+void swap_level(const uint s, const uint lane, inout cplx a, inout cplx b) {
+  const bool upper = (lane & s) != 0u;
+  const cplx received = subgroupShuffleXor(upper ? a : b, s);
+  if (upper) a = received; else b = received;
+}
+void transpose2(const uint lane, inout cplx x0, inout cplx x1) { swap_level(1u, lane, x0, x1); }
+void transpose4(const uint lane, inout cplx x0, inout cplx x1, inout cplx x2, inout cplx x3) {
+  swap_level(2u, lane, x0, x2); swap_level(2u, lane, x1, x3);
+  swap_level(1u, lane, x0, x1); swap_level(1u, lane, x2, x3);
+}
+void transpose8(const uint lane, inout cplx x0, inout cplx x1, inout cplx x2, inout cplx x3,
+                inout cplx x4, inout cplx x5, inout cplx x6, inout cplx x7) {
+  swap_level(4u, lane, x0, x4); swap_level(4u, lane, x1, x5); swap_level(4u, lane, x2, x6); swap_level(4u, lane, x3, x7);
+  swap_level(2u, lane, x0, x2); swap_level(2u, lane, x1, x3); swap_level(2u, lane, x4, x6); swap_level(2u, lane, x5, x7);
+  swap_level(1u, lane, x0, x1); swap_level(1u, lane, x2, x3); swap_level(1u, lane, x4, x5); swap_level(1u, lane, x6, x7);
+}
+
+// w^0 … w^15 of one base twiddle index (w^1, w^2, w^4, w^8 from the table, the rest products,
+// as radix16_stage does) applied to the register whose exponent is `power(ρ)`.
+#define SWELL_EACH16(F) F(0u, v0) F(1u, v1) F(2u, v2) F(3u, v3) F(4u, v4) F(5u, v5) F(6u, v6) \
+  F(7u, v7) F(8u, v8) F(9u, v9) F(10u, v10) F(11u, v11) F(12u, v12) F(13u, v13) F(14u, v14) F(15u, v15)
+
+cplx power_of(const uint m, cplx w1, cplx w2, cplx w4, cplx w8) {
+  cplx w = cplx(1, 0);
+  if ((m & 1u) != 0u) w = w1;
+  if ((m & 2u) != 0u) w = (m & 1u) != 0u ? mul(w, w2) : w2;
+  if ((m & 4u) != 0u) w = (m & 3u) != 0u ? mul(w, w4) : w4;
+  if ((m & 8u) != 0u) w = (m & 7u) != 0u ? mul(w, w8) : w8;
+  return w;
+}
+
+void shuffle_main() {
+  const uint T = N / 16u;
+  const uint tl = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID;
+  const uint l = tl / T, t = tl % T, lane = t % LANES, g = t / LANES;
+  // Step A.
+#define SWELL_FETCH(rho, v) v = fetch(l, t + (rho) * T);
+  SWELL_EACH16(SWELL_FETCH)
+  dft16(v0, v1, v2, v3, v4, v5, v6, v7, v8, v9, v10, v11, v12, v13, v14, v15);
+  if (T > 1u) {
+    const cplx w1 = twiddle(t), w2 = twiddle(2u * t), w4 = twiddle(4u * t), w8 = twiddle(8u * t);  // 8t < N/2
+#define SWELL_TWIDDLE_A(rho, v) if (dft16_index(rho) != 0u) v = mul(v, power_of(dft16_index(rho), w1, w2, w4, w8));
+    SWELL_EACH16(SWELL_TWIDDLE_A)
+  }
+  // Step B.
+  if (GROUPS > 1u) {
+    const uint base = l * N;
+#define SWELL_STORE_Y(rho, v) line[base + t * 16u + dft16_index(rho)] = v;
+    SWELL_EACH16(SWELL_STORE_Y)
+    barrier();
+    // Register ρ = s·G + gg takes Y[gg·L + lane][g·16/G + s].
+#define SWELL_LOAD_Y(rho, v) v = line[base + (((rho) % GROUPS) * LANES + lane) * 16u + g * (16u / GROUPS) + (rho) / GROUPS];
+    SWELL_EACH16(SWELL_LOAD_Y)
+    if (GROUPS == 2u) {
+      dft2(v0, v1); dft2(v2, v3); dft2(v4, v5); dft2(v6, v7);
+      dft2(v8, v9); dft2(v10, v11); dft2(v12, v13); dft2(v14, v15);
+    } else if (GROUPS == 4u) {
+      dft4(v0, v1, v2, v3); dft4(v4, v5, v6, v7); dft4(v8, v9, v10, v11); dft4(v12, v13, v14, v15);
+    } else if (GROUPS == 8u) {
+      dft8(v0, v1, v2, v3, v4, v5, v6, v7); dft8(v8, v9, v10, v11, v12, v13, v14, v15);
+    } else {
+      dft16(v0, v1, v2, v3, v4, v5, v6, v7, v8, v9, v10, v11, v12, v13, v14, v15);
+    }
+    // Twiddles w_T^(lane·c) = w_N^(16·lane·c), c the DFT_G output a register holds.
+    if (LANES > 1u) {
+      const uint u = 16u * lane;
+      // Powers beyond G − 1 are never used; their indices wrap (mod N) to stay in the table.
+      const cplx w1 = twiddle(u), w2 = twiddle((2u * u) % N), w4 = twiddle((4u * u) % N), w8 = twiddle((8u * u) % N);
+#define SWELL_C_OF(rho) (GROUPS == 16u ? dft16_index(rho) : (rho) % GROUPS)
+#define SWELL_TWIDDLE_B(rho, v) if (SWELL_C_OF(rho) != 0u) v = mul(v, power_of(SWELL_C_OF(rho), w1, w2, w4, w8));
+      SWELL_EACH16(SWELL_TWIDDLE_B)
+    }
+  }
+  // Step C.
+  if (LANES == 2u) {
+    transpose2(lane, v0, v1); transpose2(lane, v2, v3); transpose2(lane, v4, v5); transpose2(lane, v6, v7);
+    transpose2(lane, v8, v9); transpose2(lane, v10, v11); transpose2(lane, v12, v13); transpose2(lane, v14, v15);
+    dft2(v0, v1); dft2(v2, v3); dft2(v4, v5); dft2(v6, v7);
+    dft2(v8, v9); dft2(v10, v11); dft2(v12, v13); dft2(v14, v15);
+  } else if (LANES == 4u) {
+    transpose4(lane, v0, v1, v2, v3); transpose4(lane, v4, v5, v6, v7);
+    transpose4(lane, v8, v9, v10, v11); transpose4(lane, v12, v13, v14, v15);
+    dft4(v0, v1, v2, v3); dft4(v4, v5, v6, v7); dft4(v8, v9, v10, v11); dft4(v12, v13, v14, v15);
+  } else if (LANES == 8u) {
+    transpose8(lane, v0, v1, v2, v3, v4, v5, v6, v7);
+    transpose8(lane, v8, v9, v10, v11, v12, v13, v14, v15);
+    dft8(v0, v1, v2, v3, v4, v5, v6, v7); dft8(v8, v9, v10, v11, v12, v13, v14, v15);
+  }
+  // Register b·L + d now holds, for ρ = b·L + lane (the register it came from before the
+  // transpose), X[k1 + 16 (c + G d)].
+#define SWELL_PUT(rho, v) { \
+    const uint from = ((rho) / LANES) * LANES + lane; \
+    const uint k1 = GROUPS > 1u ? g * (16u / GROUPS) + from / GROUPS : dft16_index(from); \
+    const uint c = GROUPS > 1u ? SWELL_C_OF(from) : 0u; \
+    put(l, k1 + 16u * (c + GROUPS * ((rho) % LANES)), v); }
+  SWELL_EACH16(SWELL_PUT)
+}
+#endif
+
 void main() {
+#ifdef SWELL_SHUFFLE
+  shuffle_main();
+  return;
+#endif
   if (FIRST_RADIX == 1u) {  // N = 1: a copy (with the flags' conversions)
     const uint t = gl_LocalInvocationID.x;
     for (uint l = t; l < LINES; l += gl_WorkGroupSize.x) put(l, 0u, fetch(l, 0u));

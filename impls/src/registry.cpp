@@ -49,6 +49,9 @@ std::unique_ptr<Backend> make_backend(const std::string& name_and_options) {
       const auto equals = item.find('=');
       const std::string key = item.substr(0, equals);
       const std::string value = equals == std::string::npos ? "" : item.substr(equals + 1);
+      if ((key == "device" || key == "subgroups") && name != "vulkan") {
+        throw InvalidInput("backend option " + key + " is for vulkan, not " + name);
+      }
       if (key == "planner" && !value.empty()) {
         options.planner = value;
       } else if (key == "threads") {
@@ -76,10 +79,15 @@ std::unique_ptr<Backend> make_backend(const std::string& name_and_options) {
                              "' must be a Vulkan device index 0…255 (see `vulkaninfo --summary`)");
         }
         options.device = device;
+      } else if (key == "subgroups") {
+        if (value != "on" && value != "off") {
+          throw InvalidInput("backend option subgroups='" + value + "' must be on or off");
+        }
+        options.subgroups = value == "on";
       } else {
         throw InvalidInput("unknown backend option '" + item + "' in '" + name_and_options +
                            "'; valid: planner=estimate|measure|patient|exhaustive (fftw), "
-                           "threads=N (fftw, radix2), device=N (vulkan)");
+                           "threads=N (fftw, radix2), device=N and subgroups=on|off (vulkan)");
       }
       if (comma == std::string::npos) break;
       start = comma + 1;

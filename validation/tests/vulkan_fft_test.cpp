@@ -79,6 +79,37 @@ TEST(Vulkan, EveryPowerOfTwoLengthOnEitherAxis) {
   }
 }
 
+// The two line kernels (docs/vulkan.md §Kernels) on every length they serve: fft_lines_shuffle
+// (registers, one shared-memory exchange, subgroup shuffles; 16 … 2048 points, workgroups of
+// whole subgroups: 16 lines give every length a workgroup of 16 threads or more, whole
+// subgroups on lavapipe) and, with subgroups=off, the portable Stockham kernel — the one
+// devices without subgroup shuffles run (and every device at 4096, EveryPowerOfTwoLength).
+TEST(Vulkan, BothLineKernelsOnEveryLengthOnEitherAxis) {
+  VULKAN_OR_SKIP(backend);
+  const auto portable = make_backend("vulkan:subgroups=off");
+  // The portable kernel's fp64 is its fp32 code on doubles (and runs beside the shuffle kernel
+  // in EveryPowerOfTwoLength); r2c and c2c inverse take the same passes with other flags.
+  for (const Backend* b : {backend.get(), portable.get()}) {
+    for (Precision precision : b->capabilities().precisions) {
+      if (b == portable.get() && precision == Precision::f64) continue;
+      for (int n = 16; n <= 2048; n *= 2) {
+        for (auto [nx, ny] : {std::pair{n, 16}, std::pair{16, n}}) {
+          expect_within_bound(*b, nx, ny, Kind::c2c, Direction::forward, precision, 5);
+          expect_within_bound(*b, nx, ny, Kind::c2r, Direction::inverse, precision, 5);
+        }
+      }
+    }
+  }
+}
+
+TEST(Vulkan, SubgroupsOptionIsOnOrOffAndVulkanOnly) {
+  VULKAN_OR_SKIP(backend);
+  EXPECT_NO_THROW(make_backend("vulkan:subgroups=on"));
+  EXPECT_THROW(make_backend("vulkan:subgroups=maybe"), swell::InvalidInput);
+  EXPECT_THROW(make_backend("fftw:subgroups=off"), swell::InvalidInput);
+  EXPECT_THROW(make_backend("radix2:device=0"), swell::InvalidInput);
+}
+
 // Lines longer than any device's shared memory (256 KiB: 32768 fp32 or 16384 fp64 points) run
 // as two passes (four-step), on either axis and for every kind.
 TEST(Vulkan, LinesBeyondSharedMemoryRunAsTwoPassesOnEitherAxis) {

@@ -1,6 +1,7 @@
 #include "context.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <atomic>
 #include <cstdlib>
 #include <cstring>
@@ -136,7 +137,11 @@ void Context::open(int requested) {
   const bool validation = validation_requested();
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "swell";
-  app.apiVersion = VK_API_VERSION_1_1;
+  // 1.3 where the loader offers it (computeFullSubgroups for fft_lines_shuffle); 1.1 suffices
+  // for everything else.
+  std::uint32_t loader_version = VK_API_VERSION_1_0;
+  vkEnumerateInstanceVersion(&loader_version);
+  app.apiVersion = loader_version >= VK_API_VERSION_1_3 ? VK_API_VERSION_1_3 : VK_API_VERSION_1_1;
   std::vector<const char*> layers, extensions;
   VkValidationFeatureEnableEXT enables[] = {
       VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
@@ -245,6 +250,26 @@ void Context::open(int requested) {
   VkPhysicalDeviceFeatures supported{};
   vkGetPhysicalDeviceFeatures(physical_, &supported);
   float64_ = supported.shaderFloat64 == VK_TRUE;
+  // Subgroup shuffles with full subgroups (Vulkan 1.3) for fft_lines_shuffle.
+  VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  if (properties_.apiVersion >= VK_API_VERSION_1_3 && app.apiVersion >= VK_API_VERSION_1_3) {
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceVulkan13Properties properties13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES};
+    subgroup.pNext = &properties13;
+    VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties2.pNext = &subgroup;
+    vkGetPhysicalDeviceProperties2(physical_, &properties2);
+    VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    features2.pNext = &features13;
+    vkGetPhysicalDeviceFeatures2(physical_, &features2);
+    const bool shuffles = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+                          (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_SHUFFLE_BIT);
+    const std::uint32_t size = subgroup.subgroupSize;
+    if (shuffles && features13.computeFullSubgroups && size >= 8 && std::has_single_bit(size)) {
+      shuffle_subgroup_size_ = size;
+      max_subgroup_size_ = std::max(size, properties13.maxSubgroupSize);
+    }
+  }
 
   // The driver's name and version (Vulkan 1.2's driver properties where offered).
   std::string driver = fmt::format("driver version {:#x}", properties_.driverVersion);
@@ -272,6 +297,11 @@ void Context::open(int requested) {
   device_info.queueCreateInfoCount = 1;
   device_info.pQueueCreateInfos = &queue_info;
   device_info.pEnabledFeatures = &enabled;
+  VkPhysicalDeviceVulkan13Features enabled13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  if (shuffle_subgroup_size_) {
+    enabled13.computeFullSubgroups = VK_TRUE;
+    device_info.pNext = &enabled13;
+  }
   check(vkCreateDevice(physical_, &device_info, nullptr, &device_), "vkCreateDevice");
   vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
 }
@@ -437,7 +467,7 @@ const Pipeline& Context::pipeline(const std::string& module_name,
                                   const std::vector<std::uint32_t>& spirv,
                                   const std::vector<std::uint32_t>& specialization,
                                   std::uint32_t storage_buffers, std::uint32_t dynamic_buffers,
-                                  std::uint32_t push_bytes) const {
+                                  std::uint32_t push_bytes, bool full_subgroups) const {
   std::lock_guard lock(pipelines_mutex_);
   auto key = std::make_tuple(module_name, specialization);
   if (auto found = pipelines_.find(key); found != pipelines_.end()) return *found->second;
@@ -480,6 +510,7 @@ const Pipeline& Context::pipeline(const std::string& module_name,
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  if (full_subgroups) info.stage.flags = VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT;
   info.stage.module = module;
   info.stage.pName = "main";
   info.stage.pSpecializationInfo = &special;

@@ -64,6 +64,12 @@ class Context {
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
   bool float64() const { return float64_; }
+  // The subgroup size when compute shaders may shuffle within subgroups and require them full
+  // (subgroup shuffles in compute, Vulkan 1.3's computeFullSubgroups, a power of two ≥ 8);
+  // 0 otherwise. Pipelines that require full subgroups need a workgroup width that is a
+  // multiple of max_subgroup_size().
+  std::uint32_t shuffle_subgroup_size() const { return shuffle_subgroup_size_; }
+  std::uint32_t max_subgroup_size() const { return max_subgroup_size_; }
   bool has_timestamps() const { return timestamp_bits_ > 0; }
   double timestamp_period_ns() const { return properties_.limits.timestampPeriod; }
   bool is_cpu() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
@@ -90,7 +96,7 @@ class Context {
   const Pipeline& pipeline(const std::string& module_name, const std::vector<std::uint32_t>& spirv,
                            const std::vector<std::uint32_t>& specialization,
                            std::uint32_t storage_buffers, std::uint32_t dynamic_buffers,
-                           std::uint32_t push_bytes) const;
+                           std::uint32_t push_bytes, bool full_subgroups = false) const;
 
   // Barrier: compute (or transfer) writes before compute and transfer reads and writes.
   static void barrier(VkCommandBuffer commands);
@@ -109,6 +115,7 @@ class Context {
   VkPhysicalDeviceProperties properties_{};
   VkPhysicalDeviceMemoryProperties memory_{};
   bool float64_ = false;
+  std::uint32_t shuffle_subgroup_size_ = 0, max_subgroup_size_ = 0;
   int index_ = 0;
   std::string description_;
 
@@ -145,6 +152,8 @@ class DeviceBuffer final : public Buffer {
 
 // The SPIR-V of the shaders in impls/shaders, compiled by glslc at build time.
 const std::vector<std::uint32_t>& fft_lines_spirv(Precision precision);
+// fft_lines built with SWELL_SHUFFLE: needs subgroup shuffles and full subgroups.
+const std::vector<std::uint32_t>& fft_lines_shuffle_spirv(Precision precision);
 // The synthesizer's frame kernels (frame.hpp): the spectra at time t, and the six fields.
 const std::vector<std::uint32_t>& frame_evolve_spirv(Precision precision);
 const std::vector<std::uint32_t>& frame_unpack_spirv(Precision precision);

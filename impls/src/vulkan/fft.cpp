@@ -34,8 +34,9 @@ std::uint32_t shared_points(const Context& context, Precision precision) {
 
 }  // namespace
 
-FftProgram::FftProgram(std::shared_ptr<const Context> context, const TransformSpec& spec)
-    : context_(std::move(context)), spec_(spec) {
+FftProgram::FftProgram(std::shared_ptr<const Context> context, const TransformSpec& spec,
+                       bool subgroups)
+    : context_(std::move(context)), spec_(spec), subgroups_(subgroups) {
   const auto& limits = context_->limits();
   const std::size_t real = real_size(spec.precision);
   const std::uint32_t nx = std::uint32_t(spec.nx), ny = std::uint32_t(spec.ny);
@@ -273,15 +274,23 @@ void FftProgram::add_line_pass(std::uint32_t n, std::uint32_t lines_lo, std::uin
   static_assert(sizeof(PassConstants) == 15 * sizeof(std::uint32_t));
   const auto* words = reinterpret_cast<const std::uint32_t*>(&c);
   specialization.insert(specialization.end(), words, words + 15);
-  // Two copies of the lines in shared memory when they fit: one barrier a stage, not two.
-  const bool ping_pong = 2 * std::size_t(n) * lines * 2 * real_size(spec_.precision) <=
+  // The subgroup variant where the device allows it (docs/vulkan.md §Kernels): lines of 16 to
+  // 2048 points, and workgroups of whole subgroups.
+  const std::uint32_t subgroup = context_->shuffle_subgroup_size();
+  const bool shuffle = subgroup != 0 && n >= 16 && n <= 2048 &&
+                       threads % context_->max_subgroup_size() == 0 && subgroups_;
+  // Two copies of the lines in shared memory when they fit: one barrier a stage, not two (the
+  // subgroup variant exchanges through shared memory once).
+  const bool ping_pong = !shuffle && 2 * std::size_t(n) * lines * 2 * real_size(spec_.precision) <=
                          limits.maxComputeSharedMemorySize;
   specialization.push_back(ping_pong ? 1 : 0);
   specialization.push_back(radix8_stages);
-  const auto& spirv = fft_lines_spirv(spec_.precision);
+  const bool f32 = spec_.precision == Precision::f32;
   Pass pass;
-  pass.pipeline = &context_->pipeline(spec_.precision == Precision::f32 ? "fft_lines_fp32" : "fft_lines_fp64",
-                                      spirv, specialization, 4, 2, 0);
+  pass.pipeline = shuffle ? &context_->pipeline(f32 ? "fft_lines_shuffle_fp32" : "fft_lines_shuffle_fp64",
+                                                fft_lines_shuffle_spirv(spec_.precision), specialization, 4, 2, 0, true)
+                          : &context_->pipeline(f32 ? "fft_lines_fp32" : "fft_lines_fp64",
+                                                fft_lines_spirv(spec_.precision), specialization, 4, 2, 0);
   pass.source = source;
   pass.destination = destination;
   pass.groups_x = (lines_lo + lines - 1) / lines;
@@ -494,8 +503,8 @@ namespace {
 
 class VulkanPlan final : public Plan {
  public:
-  VulkanPlan(std::shared_ptr<const Context> context, const TransformSpec& spec)
-      : Plan(spec), program_(std::move(context), spec) {}
+  VulkanPlan(std::shared_ptr<const Context> context, const TransformSpec& spec, bool subgroups)
+      : Plan(spec), program_(std::move(context), spec, subgroups) {}
 
   void execute(const void* in, void* out) const override { program_.execute_host(in, out); }
 
@@ -537,7 +546,8 @@ class VulkanPlan final : public Plan {
 
 class VulkanBackend final : public Backend {
  public:
-  explicit VulkanBackend(const BackendOptions& options) : context_(Context::get(options.device)) {
+  explicit VulkanBackend(const BackendOptions& options)
+      : context_(Context::get(options.device)), subgroups_(options.subgroups) {
     if (options.threads != 1) {
       throw InvalidInput("backend option threads is for fftw and radix2; vulkan runs on its device");
     }
@@ -562,7 +572,7 @@ class VulkanBackend final : public Backend {
   }
   std::unique_ptr<Plan> plan(const TransformSpec& spec) const override {
     validate(spec);
-    return std::make_unique<VulkanPlan>(context_, spec);
+    return std::make_unique<VulkanPlan>(context_, spec, subgroups_);
   }
   std::unique_ptr<Buffer> allocate(std::size_t bytes) const override {
     return std::make_unique<DeviceBuffer>(context_, bytes);
@@ -572,6 +582,7 @@ class VulkanBackend final : public Backend {
 
  private:
   std::shared_ptr<const Context> context_;
+  bool subgroups_ = true;
 };
 
 const VulkanPlan& vulkan_plan(const Plan& plan) {

@@ -42,8 +42,9 @@ struct Workspace {
 
 class FftProgram {
  public:
-  // Throws UnsupportedTransform naming the rule when the device cannot run `spec`.
-  FftProgram(std::shared_ptr<const Context> context, const TransformSpec& spec);
+  // Throws UnsupportedTransform naming the rule when the device cannot run `spec`. subgroups:
+  // use fft_lines_shuffle where the device and the pass allow it (else the portable kernel).
+  FftProgram(std::shared_ptr<const Context> context, const TransformSpec& spec, bool subgroups = true);
   ~FftProgram();
   FftProgram(const FftProgram&) = delete;
   FftProgram& operator=(const FftProgram&) = delete;
@@ -80,6 +81,7 @@ class FftProgram {
   std::vector<std::pair<std::uint32_t, Allocation>> twiddles_;  // (N, table of N complex)
   VkDeviceSize temp_a_bytes_ = 0, temp_b_bytes_ = 0;
   bool per_batch_ = false;  // one dispatch per transform of the batch (arrays beyond the range)
+  bool subgroups_ = true;   // fft_lines_shuffle allowed (backend option subgroups)
   mutable std::mutex workspaces_mutex_;
   mutable std::vector<std::unique_ptr<Workspace>> workspaces_;
   mutable std::vector<Workspace*> free_workspaces_;

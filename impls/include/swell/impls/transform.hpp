@@ -112,6 +112,7 @@ struct BackendOptions {
   std::string planner;   // fftw: estimate | measure | patient | exhaustive
   int threads = 1;
   int device = -1;       // vulkan: index of the Vulkan device; −1 chooses (docs/vulkan.md)
+  bool subgroups = true;  // vulkan: the subgroup-shuffle kernel where the device allows it
 };
 
 class Backend {
