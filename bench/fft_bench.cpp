@@ -123,7 +123,10 @@ void register_all() {
                                    to_string(precision) + "/" + std::to_string(n);
           benchmark::RegisterBenchmark(name.c_str(), run, impl, spec)
               ->Unit(benchmark::kMillisecond)
-              ->UseRealTime();
+              ->UseRealTime()
+              // Warm-up (untimed) before each: the first benchmarks of a run were up to 2× slower
+              // than the same ones later (lavapipe's threads and the CPU's clocks waking up).
+              ->MinWarmUpTime(0.05);
         }
       }
     }

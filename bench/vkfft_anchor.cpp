@@ -375,7 +375,10 @@ void register_vkfft_benchmarks() {
     // GFLOP/s and bytes/s rates, taken over the benchmark's time, would be far too high).
     benchmark::RegisterBenchmark(benchmark_name(n).c_str(), run, n)
         ->Unit(benchmark::kMillisecond)
-        ->UseRealTime();
+        ->UseRealTime()
+        // Warm-up (untimed) before each: the first benchmarks of a run were up to 2× slower
+        // than the same ones later (lavapipe's threads and the CPU's clocks waking up).
+        ->MinWarmUpTime(0.05);
 #else
     benchmark::RegisterBenchmark(benchmark_name(n).c_str(), skip);
 #endif

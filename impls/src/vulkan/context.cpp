@@ -447,17 +447,17 @@ void Context::run(const std::function<void(VkCommandBuffer)>& record) const {
   submit_and_wait(slot);
 }
 
-std::vector<double> Context::timestamp_seconds(const Slot& slot) const {
-  std::vector<double> seconds(kTimestamps, 0.0);
+std::vector<double> Context::timestamp_seconds(const Slot& slot, std::uint32_t count) const {
+  std::vector<double> seconds(count, 0.0);
   if (!slot.timestamps) return seconds;
   std::uint64_t ticks[kTimestamps] = {};
-  check(vkGetQueryPoolResults(device_, slot.timestamps, 0, kTimestamps, sizeof ticks, ticks,
-                              sizeof(std::uint64_t),
+  check(vkGetQueryPoolResults(device_, slot.timestamps, 0, count, count * sizeof(std::uint64_t),
+                              ticks, sizeof(std::uint64_t),
                               VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
         "vkGetQueryPoolResults");
   const std::uint64_t mask =
       timestamp_bits_ >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << timestamp_bits_) - 1;
-  for (std::uint32_t q = 0; q < kTimestamps; ++q) {
+  for (std::uint32_t q = 0; q < count; ++q) {
     seconds[q] = double((ticks[q] - ticks[0]) & mask) * timestamp_period_ns() * 1e-9;
   }
   return seconds;

@@ -90,7 +90,8 @@ class Context {
   // Records `record` into a slot, submits it and waits: for uploads, downloads and set-up.
   void run(const std::function<void(VkCommandBuffer)>& record) const;
   // Seconds between timestamps `from` and `to` of a slot that ran.
-  std::vector<double> timestamp_seconds(const Slot& slot) const;
+  // `count`: the slot's first `count` timestamps were written (at most kTimestamps).
+  std::vector<double> timestamp_seconds(const Slot& slot, std::uint32_t count = kTimestamps) const;
 
   // The pipeline of an embedded SPIR-V module with these specialization constants (cached).
   const Pipeline& pipeline(const std::string& module_name, const std::vector<std::uint32_t>& spirv,
