@@ -88,8 +88,8 @@ bool has(uint flag) { return (FLAGS & flag) != 0u; }
 // A pass over adjacent lines (the y axis's columns, or the first pass of an x-axis split): the
 // invocations of a SIMD group take neighbouring lines in every stage and shared memory holds
 // element e of line l at e·LINES + l, so that a stage's loads and stores are contiguous across
-// lanes (lavapipe's 8 lanes read one cache line) — not N apart, which maps every lane to the
-// same L1 set (a 512-point fp32 line is 4 KiB) and made the column pass 1.5× the row pass.
+// lanes rather than N apart (the layout a GPU's shared-memory banks want). On lavapipe, whose
+// shared-memory accesses go lane by lane anyway, it measured the same as l·N + e.
 bool columns_pass() { return has(SOURCE_LINE_FASTEST) && has(DESTINATION_LINE_FASTEST); }
 uint shared_index(uint l, uint e) { return columns_pass() ? e * LINES + l : l * N + e; }
 uint element_pitch() { return columns_pass() ? LINES : 1u; }
@@ -420,11 +420,12 @@ void transpose8(const uint lane, inout cplx x0, inout cplx x1, inout cplx x2, in
   swap_level(1u, lane, x0, x1); swap_level(1u, lane, x2, x3); swap_level(1u, lane, x4, x5); swap_level(1u, lane, x6, x7);
 }
 
-// w^0 … w^15 of one base twiddle index (w^1, w^2, w^4, w^8 from the table, the rest products,
-// as radix16_stage does) applied to the register whose exponent is `power(ρ)`.
+// F(ρ, register ρ) for the 16 registers: straight-line code with constant register indices.
 #define SWELL_EACH16(F) F(0u, v0) F(1u, v1) F(2u, v2) F(3u, v3) F(4u, v4) F(5u, v5) F(6u, v6) \
   F(7u, v7) F(8u, v8) F(9u, v9) F(10u, v10) F(11u, v11) F(12u, v12) F(13u, v13) F(14u, v14) F(15u, v15)
 
+// w^m, 0 ≤ m < 16, from w, w², w⁴ and w⁸ (read from the table) by at most three products, as
+// radix16_stage makes its twiddles.
 cplx power_of(const uint m, cplx w1, cplx w2, cplx w4, cplx w8) {
   cplx w = cplx(1, 0);
   if ((m & 1u) != 0u) w = w1;
