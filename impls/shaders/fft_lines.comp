@@ -25,12 +25,18 @@
 //                  by w_N^(n2·k1) (the four-step algorithm's twiddles), n2 = lo or hi
 // Twiddles come from tables computed on the host in long double (drivers' sin and cos differ):
 // line_twiddle[j] = e^(−2πij/N), split_twiddle[j] = e^(−2πij/N_total); inverse uses conj.
+//
+// Built with -DSWELL_FRAME (fft_frame_*), the first pass of the synthesizer's frame makes the
+// packed spectra it reads and the last pass writes the six fields (FRAME_SOURCE, FRAME_FIELDS;
+// see the SWELL_FRAME section below and docs/synthesis.md §vulkan).
 #ifdef SWELL_FP64
 #define real double
 #define cplx dvec2
+#define vec4_or_dvec4 dvec4
 #else
 #define real float
 #define cplx vec2
+#define vec4_or_dvec4 vec4
 #endif
 
 layout(local_size_x_id = 0) in;
@@ -49,7 +55,8 @@ layout(set = 0, binding = 3) readonly buffer SplitTwiddles { cplx split_twiddle[
 
 const uint INVERSE = 1u, REAL_INPUT = 2u, HERMITIAN = 4u, REAL_OUTPUT = 8u, LIMIT = 16u,
            SPLIT_TWIDDLE = 32u, SPLIT_BY_HI = 64u, SOURCE_LINE_FASTEST = 128u,
-           DESTINATION_LINE_FASTEST = 256u;
+           DESTINATION_LINE_FASTEST = 256u, FRAME_SOURCE = 512u, FRAME_FIELDS = 1024u,
+           FRAME_JACOBIAN = 2048u;
 
 // The pass's addressing and flags as specialization constants: every pass is its own
 // pipeline, so the driver folds strides and flags into the code (as push constants they cost
@@ -85,6 +92,14 @@ void swap_copies() {
 
 bool has(uint flag) { return (FLAGS & flag) != 0u; }
 
+// The workgroup's place: its lines along x and its transform of the batch. A pass may
+// interleave the batch along x (BATCH_IN_X transforms: workgroup x holds lines x / BATCH_IN_X
+// of transform x mod BATCH_IN_X), so that the workgroups of one set of lines in every
+// transform run one after the other.
+layout(constant_id = 25) const uint BATCH_IN_X = 1;
+uint group_x() { return gl_WorkGroupID.x / BATCH_IN_X; }
+uint group_batch() { return gl_WorkGroupID.x % BATCH_IN_X + gl_WorkGroupID.z; }
+
 // A pass over adjacent lines (the y axis's columns, or the first pass of an x-axis split): the
 // invocations of a SIMD group take neighbouring lines in every stage and shared memory holds
 // element e of line l at e·LINES + l, so that a stage's loads and stores are contiguous across
@@ -102,21 +117,192 @@ cplx mul(cplx a, cplx b) { return cplx(a.x * b.x - a.y * b.y, a.x * b.y + a.y * 
 // a · (∓i): forward multiplies by −i, inverse by +i.
 cplx rotate(cplx a) { return has(INVERSE) ? cplx(-a.y, a.x) : cplx(a.y, -a.x); }
 
+#ifdef SWELL_FRAME
+// ------------------------------------------------------------------ the synthesizer's frame
+// The frame program (impls/src/vulkan/frame.cpp) is the synthesizer's batch of inverse
+// transforms — PAIRS: four c2c of nx × ny, the real fields (h, ∂h/∂x), (∂h/∂y, λDx),
+// (λDy, λ∂Dx/∂x), (λ∂Dy/∂y, λ∂Dx/∂y) packed as A + iB; else eight c2r, one real field each, in
+// that order — whose first pass reads spectra nobody stored and whose last pass writes the
+// fields nobody has to unpack. On lavapipe every storage-buffer access is a loop over the SIMD
+// lanes (docs/vulkan.md §Kernels): a kernel that wrote the packed spectra and one that read the
+// transforms back to make the fields cost 1.4–1.8× the transforms. Fused, the first pass reads
+// one value a point as the bare pass does, and the last writes one a point as it does.
+//
+// FRAME_SOURCE (the first pass): element a of the (virtual) batch of spectra, C = nx (PAIRS) or
+// nx/2 + 1 (c2r) columns by ny rows a plane, is m·h̃(k, t), h̃ from the evolution kernel's half
+// spectrum (frame_evolve.comp; columns 0 … nx/2, row-major) — for columns beyond nx/2, conj(h̃)
+// of the mirror entry (−k; h̃(−k) = conj(h̃(k))) — and m the plane's multiplier: for one real
+// field r, c_r = 1, i kx, i ky, iλkx/k, iλky/k, −λkx²/k, −λky²/k, −λkxky/k (docs/conventions.md
+// §Derived fields) times its scale (a power of two that keeps fp32 in range; synthesizer.cpp's
+// State::field_scale); for a pair, c_A + i c_B, whose inverse transform is a + ib. kx and ky are
+// the signed index times Δk in double, rounded once, as the host's tables hold them; λ/|k| is
+// computed in the synthesis precision (the host's table rounds it once from double: they
+// differ by an ulp or two, far inside the fp32 bound; reading it beside h̃ cost a second word a
+// point).
+//
+// FRAME_FIELDS (the last pass): each value goes where the bare pass would store it, times the
+// inverse scales (0 for a field that is zero by definition), so the fields lie in the pass's
+// destination. PAIRS (in place over the packed spectra): planes 0, 1, 2 hold (h, ∂h/∂x),
+// (∂h/∂y, λDx), (λDy, λ∂Dx/∂x); then the last plane's pipeline (FRAME_JACOBIAN), dispatched
+// after the others behind a barrier, reads plane 2, makes J = (1 + λ∂Dx/∂x)(1 + λ∂Dy/∂y) −
+// (λ∂Dx/∂y)² from it and its own values, and writes (λDy, J) over it (plane 2's workgroups
+// going on to plane 3 instead, J from values still in their cache, measured 3–7 % slower on
+// lavapipe, side by side); the host's copy of the
+// frame splits the three pairs into the six fields. c2r: plane r holds field r (λ∂Dx/∂x in
+// plane 5, λ∂Dy/∂y in plane 6), and the last plane's pipeline reads planes 5 and 6 and writes J
+// over plane 5. The J pipeline's planes start at plane JACOBIAN_FIRST of the destination
+// binding (0, or, dispatched one transform at a time, the first plane it reads). A non-finite
+// field value is counted into `non_finite` (the synthesizer then throws an InternalError
+// naming it, never returning a frame with infinities); the test is on the exponent bits, which
+// no assumption about NaN (fast math) can fold away, as isnan could be.
+//
+// The plane is the workgroup's transform of the batch (group_batch(); with a batch beyond one
+// binding, dispatched one transform at a time, the dispatch's base workgroup z); IN_BATCH is
+// the virtual spectra's plane size, so b·IN_BATCH + the offset in the plane names an element.
+layout(constant_id = 22) const uint FRAME_NY = 1;         // rows of a plane
+layout(constant_id = 23) const bool PAIRS = true;
+layout(constant_id = 24) const uint JACOBIAN_FIRST = 0;
+
+#ifdef SWELL_FP64
+layout(set = 0, binding = 0) readonly buffer Table { dvec2 table[]; };  // h̃
+layout(set = 0, binding = 5, std140) uniform FrameConstants {
+  dvec4 field_scale_0123, field_scale_4567, inverse_scale[2];
+  double dkx, dky;   // rad/m
+  double lambda;     // the choppiness λ
+} frame;
+#else
+// h̃ as one 64-bit word (an fp32 complex, real part in the low half: one memory access, not two).
+layout(set = 0, binding = 0) readonly buffer Table { double table[]; };
+layout(set = 0, binding = 5, std140) uniform FrameConstants {
+  vec4 field_scale_0123, field_scale_4567, inverse_scale[2];
+  double dkx, dky;   // rad/m
+  double lambda;     // the choppiness λ
+} frame;
+#endif
+// The J pipeline reads the planes it makes J from through the destination binding.
+layout(set = 0, binding = 1) readonly buffer DestinationRead { cplx dst_read[]; };
+layout(set = 0, binding = 1) readonly buffer RealDestinationRead { real dst_real_read[]; };
+layout(set = 0, binding = 4) buffer Probe { uint non_finite; };
+
+uint frame_non_finite = 0u;  // this invocation's count, added to the probe once at the end
+
+// Grid::signed_index, and kx of column i (ky of row j) as the host's tables hold it.
+int signed_index(uint i, uint n) { return i < (n + 1u) / 2u ? int(i) : int(i) - int(n); }
+real wave_number(uint i, uint n, double dk) { return real(double(signed_index(i, n)) * dk); }
+
+// m of plane `plane` at (kx, ky) with lk = λ/|k| (see above), s = the field scales.
+cplx multiplier(uint plane, real kx, real ky, real lk, vec4_or_dvec4 s0123, vec4_or_dvec4 s4567) {
+  if (PAIRS) {
+    switch (plane) {
+      case 0u: return cplx(s0123.x - kx * s0123.y, 0);                        // h + i ∂h/∂x
+      case 1u: return cplx(-lk * kx * s0123.w, ky * s0123.z);                 // ∂h/∂y + i λDx
+      case 2u: return cplx(0, lk * ky * s4567.x - lk * kx * kx * s4567.y);    // λDy + i λ∂Dx/∂x
+      default: return cplx(-lk * ky * ky * s4567.z, -lk * kx * ky * s4567.w); // λ∂Dy/∂y + i λ∂Dx/∂y
+    }
+  }
+  switch (plane) {
+    case 0u: return cplx(s0123.x, 0);
+    case 1u: return cplx(0, kx * s0123.y);
+    case 2u: return cplx(0, ky * s0123.z);
+    case 3u: return cplx(0, lk * kx * s0123.w);
+    case 4u: return cplx(0, lk * ky * s4567.x);
+    case 5u: return cplx(-lk * kx * kx * s4567.y, 0);
+    case 6u: return cplx(-lk * ky * ky * s4567.z, 0);
+    default: return cplx(-lk * kx * ky * s4567.w, 0);
+  }
+}
+
+cplx frame_spectrum(uint a) {
+  const uint columns = PAIRS ? ROW : ROW / 2u + 1u;
+  const uint plane = group_batch(), o = a - plane * IN_BATCH, j = o / columns, i = o % columns;
+  // Columns beyond nx/2 (PAIRS) hold −k of the half spectrum's column nx − i, row (ny − j) mod ny.
+  const bool mirrored = i > ROW / 2u;
+  const uint entry = mirrored ? ((FRAME_NY - j) % FRAME_NY) * (ROW / 2u + 1u) + (ROW - i)
+                              : j * (ROW / 2u + 1u) + i;
+#ifdef SWELL_FP64
+  const cplx h = table[entry];
+#else
+  const cplx h = uintBitsToFloat(unpackDouble2x32(table[entry]));
+#endif
+  const real kx = wave_number(i, ROW, frame.dkx), ky = wave_number(j, FRAME_NY, frame.dky);
+  const real k2 = kx * kx + ky * ky;
+  const real lk = k2 > 0.0 ? real(frame.lambda) / sqrt(k2) : real(0);  // k = 0 carries no wave
+  const cplx m = multiplier(plane, kx, ky, lk, frame.field_scale_0123, frame.field_scale_4567);
+  return mul(m, cplx(h.x, mirrored ? -h.y : h.y));
+}
+
+bool finite(float v) { return (floatBitsToUint(v) & 0x7f800000u) != 0x7f800000u; }
+bool finite(double v) { return (unpackDouble2x32(v).y & 0x7ff00000u) != 0x7ff00000u; }
+uint non_finite_count(real v) { return finite(v) ? 0u : 1u; }
+
+real inverse_scale(uint r) { return frame.inverse_scale[r / 4u][r % 4u]; }
+
+// The value v of element `at` of the destination binding, in plane p = the workgroup's, to the
+// fields (see above). Straight-line code: on lavapipe both arms of a branch run, with masks.
+void frame_fields(uint at, cplx v) {
+  const uint plane = group_batch(), samples = ROW * FRAME_NY;
+  if (has(FRAME_JACOBIAN)) {
+    const uint s = at - plane * OUT_BATCH;  // the sample
+    if (PAIRS) {
+      const uint first_input = (plane - 1u - JACOBIAN_FIRST) * samples + s;
+      const cplx dy_dxx = dst_read[first_input];
+      const real dxx = dy_dxx.y, dyy = v.x * inverse_scale(6u), dxy = v.y * inverse_scale(7u);
+      const real jacobian = (1.0 + dxx) * (1.0 + dyy) - dxy * dxy;
+      dst[first_input] = cplx(dy_dxx.x, jacobian);
+      frame_non_finite += non_finite_count(jacobian);
+    } else {
+      const uint first_input = (plane - 2u - JACOBIAN_FIRST) * samples + s;
+      const real dxx = dst_real_read[first_input], dyy = dst_real_read[first_input + samples];
+      const real dxy = v.x * inverse_scale(7u);
+      const real jacobian = (1.0 + dxx) * (1.0 + dyy) - dxy * dxy;
+      dst_real[first_input] = jacobian;
+      frame_non_finite += non_finite_count(jacobian);
+    }
+    return;
+  }
+  if (PAIRS) {
+    const real first = v.x * inverse_scale(2u * plane), second = v.y * inverse_scale(2u * plane + 1u);
+    dst[at] = cplx(first, second);
+    frame_non_finite += non_finite_count(first) + (plane < 2u ? non_finite_count(second) : 0u);
+  } else {
+    const real value = v.x * inverse_scale(plane);
+    dst_real[at] = value;
+    frame_non_finite += plane < 5u ? non_finite_count(value) : 0u;
+  }
+}
+
+// After the last store: this invocation's non-finite values into the probe.
+void frame_finish() {
+  if (has(FRAME_FIELDS) && frame_non_finite != 0u) atomicAdd(non_finite, frame_non_finite);
+}
+
+cplx read_source(uint a) { return has(FRAME_SOURCE) ? frame_spectrum(a) : src[a]; }
+#else
+cplx read_source(uint a) { return src[a]; }
+void frame_finish() {}
+#endif
+
 cplx load(uint b, uint hi, uint lo, uint e) {
   const uint p = lo * IN_LO_POSITION + e * IN_ELEMENT;  // in the row
   const uint base = b * IN_BATCH + hi * IN_HI + lo * IN_LO - lo * IN_LO_POSITION;
   if (has(REAL_INPUT)) return cplx(src_real[base + p], 0);
   if (has(HERMITIAN) && 2u * p > ROW) {
-    const cplx mirror = src[base + ROW - p];
+    const cplx mirror = read_source(base + ROW - p);
     return cplx(mirror.x, -mirror.y);
   }
-  return src[base + p];
+  return read_source(base + p);
 }
 
 void store(uint b, uint hi, uint lo, uint e, cplx v) {
   const uint p = lo * OUT_LO_POSITION + e * OUT_ELEMENT;  // in the row
   const uint base = b * OUT_BATCH + hi * OUT_HI + lo * OUT_LO - lo * OUT_LO_POSITION;
   if (has(LIMIT) && p >= WRITE_LIMIT) return;
+#ifdef SWELL_FRAME
+  if (has(FRAME_FIELDS)) {
+    frame_fields(base + p, v);
+    return;
+  }
+#endif
   if (has(REAL_OUTPUT)) {
     dst_real[base + p] = v.x;
     return;
@@ -189,22 +375,22 @@ uvec2 line_and_index(uint b, uint per_line, bool lines_fastest) {
 }
 
 cplx fetch(uint l, uint e) {
-  const uint lo = gl_WorkGroupID.x * LINES + l;
+  const uint lo = group_x() * LINES + l;
   // Every workgroup full (LINES divides LINES_LO, always so for powers of two): no test, so no
   // divergent control flow for the driver to mask.
-  if (LINES_LO % LINES == 0u) return load(gl_WorkGroupID.z, gl_WorkGroupID.y, lo, e);
-  return lo < LINES_LO ? load(gl_WorkGroupID.z, gl_WorkGroupID.y, lo, e) : cplx(0);
+  if (LINES_LO % LINES == 0u) return load(group_batch(), gl_WorkGroupID.y, lo, e);
+  return lo < LINES_LO ? load(group_batch(), gl_WorkGroupID.y, lo, e) : cplx(0);
 }
 
 void put(uint l, uint e, cplx v) {
-  const uint lo = gl_WorkGroupID.x * LINES + l;
+  const uint lo = group_x() * LINES + l;
   if (LINES_LO % LINES != 0u && lo >= LINES_LO) return;
   if (has(SPLIT_TWIDDLE)) {
     const uint n2 = has(SPLIT_BY_HI) ? gl_WorkGroupID.y : lo;
     const cplx w = split_twiddle[(n2 * e) % SPLIT_N];
     v = mul(v, has(INVERSE) ? cplx(w.x, -w.y) : w);
   }
-  store(gl_WorkGroupID.z, gl_WorkGroupID.y, lo, e, v);
+  store(group_batch(), gl_WorkGroupID.y, lo, e, v);
 }
 
 // Sixteen values to the array (last stage) or to shared memory: element `first + q·stride` of
@@ -503,7 +689,7 @@ void shuffle_main() {
 }
 #endif
 
-void main() {
+void transform() {
 #ifdef SWELL_SHUFFLE
   shuffle_main();
   return;
@@ -517,4 +703,9 @@ void main() {
   uint p = FIRST_RADIX;
   for (uint stage = 0u; stage < RADIX8_STAGES; ++stage, p *= 8u) radix8_stage(p);
   for (; p < N; p *= 16u) radix16_stage(p);
+}
+
+void main() {
+  transform();
+  frame_finish();
 }

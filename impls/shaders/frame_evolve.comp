@@ -4,17 +4,10 @@
 //
 //   h̃(k, t) = a e^(−iωt) + b e^(+iωt),   a = h̃0(k), b = conj(h̃0(−k))
 //
-// (docs/conventions.md §Amplitudes) and writes the spectra of the eight real fields exactly as
-// Synthesizer::State::assemble does on the host (impls/src/synthesizer.cpp: field_spectra,
-// store_pairs, the mirror row), scaled by the per-field powers of two:
-//   PAIRS   four c2c spectra of nx columns, (h, ∂h/∂x), (∂h/∂y, λDx), (λDy, λ∂Dx/∂x),
-//           (λ∂Dy/∂y, λ∂Dx/∂y), each pair A + iB; columns nx/2 + 1 … nx − 1 of row (ny − j) mod ny
-//           hold −k of columns nx − 1 … 1 of row j: h̃(−k) = conj(h̃(k)) and ω(−k) = ω(k), so each
-//           phase is computed once, by the invocation of the half-spectrum entry
-//   !PAIRS  eight c2r half spectra of nx/2 + 1 columns
-// The fields' multipliers at k = (kx, ky) (conventions §Derived fields, λ in the displacements):
-//   h: 1   ∂h/∂x: i kx   ∂h/∂y: i ky   λDx: iλ kx/k   λDy: iλ ky/k
-//   λ∂Dx/∂x: −λ kx²/k   λ∂Dy/∂y: −λ ky²/k   λ∂Dx/∂y: −λ kx ky/k
+// (docs/conventions.md §Amplitudes) into the table the frame program's first pass reads
+// (fft_lines.comp, FRAME_SOURCE), which makes each plane's packed spectrum from it — the
+// fields' multipliers, the scales and the mirror half (h̃(−k) = conj(h̃(k)), ω(−k) = ω(k)), so
+// each phase is computed once.
 //
 // The phase ωt is computed in double whatever the synthesis precision (so the device needs
 // shaderFloat64): at ωt = 10⁹ rad a float phase would carry no correct digit. It is reduced as
@@ -27,56 +20,38 @@
 // depends on each operation being rounded as written, never contracted, reassociated or
 // simplified (c − (c − a) is not a).
 //
-// Memory accesses are what a frame costs on lavapipe (each one is a loop over the SIMD lanes),
-// so the kernel makes few: kx and ky come from the integer indices (as the host's tables do:
-// the signed index times Δk in double, rounded once), the scales are push constants, and an fp32
-// complex value is read and written as one 64-bit word (its two floats' bits in a double, never
-// used as a number: no arithmetic touches it, so its bits stay as written).
+// Memory accesses are what a frame costs on lavapipe (each one a loop over the SIMD lanes, each
+// component a load or store in it), so an fp32 complex is read and written as one 64-bit word
+// (its two floats' bits in a double, never used as a number: no arithmetic touches it, so its
+// bits stay as written).
 //
-// Bindings: the waves (a, b) per half entry, λ/|k| per half entry, ω per half entry (double),
-// and the eight output planes (complex), each bound on its own: one plane of a large fp64 batch
-// fits maxStorageBufferRange when the whole batch does not. A tiny grid's planes, smaller than
-// minStorageBufferOffsetAlignment, share one binding of the whole buffer instead, and plane p
-// then starts at element p · frame.plane_stride (0 otherwise).
+// Bindings: the waves (a, b) per half entry, ω per half entry (double), the table of h̃.
+// Each invocation takes two adjacent entries: a load or store costs lavapipe a loop over the
+// lanes whatever its width, so two entries' waves are one dvec4 (fp32), their ω one dvec2 and
+// their h̃ one store. The host pads the tables to a whole number of workgroups (zero waves and
+// ω: h̃ = 0 there, never read), so no invocation tests a bound.
 #ifdef SWELL_FP64
 #define real double
-#define complex_word dvec2
-complex_word word(double re, double im) { return dvec2(re, im); }
-#define wave_words dvec4
+#define vec2_or_dvec2 dvec2
 #else
 #define real float
-#define complex_word double
-// An fp32 complex as one 64-bit word, real part in the low half (the float pair's layout).
-complex_word word(float re, float im) { return packDouble2x32(uvec2(floatBitsToUint(re), floatBitsToUint(im))); }
-#define wave_words dvec2
+#define vec2_or_dvec2 vec2
 #endif
 
 layout(local_size_x_id = 0) in;
-layout(constant_id = 1) const bool PAIRS = true;
 
-layout(set = 0, binding = 0) readonly buffer Waves { wave_words waves[]; };  // (a, b), see main
-layout(set = 0, binding = 1) readonly buffer LambdaOverK { real lambda_over_k[]; };
-layout(set = 0, binding = 2) readonly buffer Omega { double omega[]; };
-layout(set = 0, binding = 3) writeonly buffer Plane0 { complex_word plane0[]; };
-layout(set = 0, binding = 4) writeonly buffer Plane1 { complex_word plane1[]; };
-layout(set = 0, binding = 5) writeonly buffer Plane2 { complex_word plane2[]; };
-layout(set = 0, binding = 6) writeonly buffer Plane3 { complex_word plane3[]; };
-layout(set = 0, binding = 7) writeonly buffer Plane4 { complex_word plane4[]; };
-layout(set = 0, binding = 8) writeonly buffer Plane5 { complex_word plane5[]; };
-layout(set = 0, binding = 9) writeonly buffer Plane6 { complex_word plane6[]; };
-layout(set = 0, binding = 10) writeonly buffer Plane7 { complex_word plane7[]; };
+#ifdef SWELL_FP64
+layout(set = 0, binding = 0) readonly buffer Waves { dvec4 waves[]; };  // (a.re, a.im, b.re, b.im)
+layout(set = 0, binding = 2) writeonly buffer Table { dvec4 table[]; };  // two entries' h̃
+#else
+layout(set = 0, binding = 0) readonly buffer Waves { dvec4 waves[]; };  // two entries' a and b words
+layout(set = 0, binding = 2) writeonly buffer Table { dvec2 table[]; };  // two entries' h̃ words
+#endif
+layout(set = 0, binding = 1) readonly buffer Omega { dvec2 omega[]; };  // two entries' ω
 
 layout(push_constant) uniform Frame {
-  double t;               // s
-  double dkx, dky;        // rad/m
-  uint nx, ny;
-  uint half_columns;      // nx/2 + 1
-  uint spectrum_columns;  // of the output spectra: nx (PAIRS) or nx/2 + 1
-  uint plane_stride;
-  uint reserved;
-  real field_scale[8];    // powers of two, packing order (synthesizer.cpp's State::field_scale)
+  double t;  // s
 } frame;
-
 
 // The double with IEEE bits hi:lo. The constants of the reduction are given by their bits, as
 // reference/phase.hpp gives them in hexadecimal: no decimal literal to be parsed or rounded.
@@ -157,72 +132,29 @@ void sin_cos(double x, out double sin_x, out double cos_x) {
   cos_x = ((quadrant + 1u) & 2u) != 0u ? -c : c;
 }
 
-// Grid::signed_index: the wave-number index of array index i along an axis of n samples.
-int signed_index(uint i, uint n) { return i < (n + 1u) / 2u ? int(i) : int(i) - int(n); }
-// kx of column i (ky of row j) as the host's table holds it: signed index × Δk in double, then
-// rounded once to the precision.
-real wave_number(uint i, uint n, double dk) { return real(double(signed_index(i, n)) * dk); }
-
-// The eight fields' spectra at k = (kx, ky) from h̃ = (hr, hi), times their scales
-// (synthesizer.cpp's field_spectra), stored at complex element `element` of each plane.
-// Straight-line code on named values: no arrays, no loops.
-void store(uint element, real hr, real hi, real kx, real ky, real lk) {
-  const real lkx = lk * kx, lky = lk * ky;
-  const real re0 = hr * frame.field_scale[0],             im0 = hi * frame.field_scale[0];
-  const real re1 = -kx * hi * frame.field_scale[1],       im1 = kx * hr * frame.field_scale[1];
-  const real re2 = -ky * hi * frame.field_scale[2],       im2 = ky * hr * frame.field_scale[2];
-  const real re3 = -lkx * hi * frame.field_scale[3],      im3 = lkx * hr * frame.field_scale[3];
-  const real re4 = -lky * hi * frame.field_scale[4],      im4 = lky * hr * frame.field_scale[4];
-  const real re5 = -lkx * kx * hr * frame.field_scale[5], im5 = -lkx * kx * hi * frame.field_scale[5];
-  const real re6 = -lky * ky * hr * frame.field_scale[6], im6 = -lky * ky * hi * frame.field_scale[6];
-  const real re7 = -lkx * ky * hr * frame.field_scale[7], im7 = -lkx * ky * hi * frame.field_scale[7];
-  const uint stride = frame.plane_stride;
-  if (PAIRS) {
-    // Two real fields A, B per complex spectrum Â + iB̂: its inverse transform is A + iB.
-    plane0[element] = word(re0 - im1, im0 + re1);
-    plane1[stride + element] = word(re2 - im3, im2 + re3);
-    plane2[2u * stride + element] = word(re4 - im5, im4 + re5);
-    plane3[3u * stride + element] = word(re6 - im7, im6 + re7);
-  } else {
-    plane0[element] = word(re0, im0);
-    plane1[stride + element] = word(re1, im1);
-    plane2[2u * stride + element] = word(re2, im2);
-    plane3[3u * stride + element] = word(re3, im3);
-    plane4[4u * stride + element] = word(re4, im4);
-    plane5[5u * stride + element] = word(re5, im5);
-    plane6[6u * stride + element] = word(re6, im6);
-    plane7[7u * stride + element] = word(re7, im7);
-  }
+// h̃ = a e^(−iωt) + b e^(+iωt) of one entry, with cos and sin rounded once to the synthesis
+// precision.
+vec2_or_dvec2 evolve(double w, real a_re, real a_im, real b_re, real b_im) {
+  double s, c;
+  sin_cos(reduced_phase(w, frame.t), s, c);
+  const real cr = real(c), sr = real(s);
+  return vec2_or_dvec2((a_re + b_re) * cr + (a_im - b_im) * sr, (a_im + b_im) * cr - (a_re - b_re) * sr);
 }
 
 void main() {
-  // One invocation per half-spectrum entry, counted along x then y of the dispatch (the host
-  // spreads more than maxComputeWorkGroupCount[0] workgroups over y).
-  const uint e = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-  const uint half_columns = frame.half_columns, nx = frame.nx, ny = frame.ny;
-  if (e >= half_columns * ny) return;
-  const uint i = e % half_columns, j = e / half_columns;
-  double s, c;
-  sin_cos(reduced_phase(omega[e], frame.t), s, c);
-  // h̃ = a e^(−iωt) + b e^(+iωt), with cos and sin rounded once to the synthesis precision.
-  const real cr = real(c), sr = real(s);
+  // Entries 2q and 2q + 1, q counted along x then y of the dispatch (the host spreads more than
+  // maxComputeWorkGroupCount[0] workgroups over y).
+  const uint q = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+  const dvec2 w = omega[q];
 #ifdef SWELL_FP64
-  const dvec4 w = waves[e];  // (a.re, a.im, b.re, b.im)
-  const double a_re = w.x, a_im = w.y, b_re = w.z, b_im = w.w;
+  const dvec4 u = waves[2u * q], v = waves[2u * q + 1u];
+  const dvec2 h0 = evolve(w.x, u.x, u.y, u.z, u.w), h1 = evolve(w.y, v.x, v.y, v.z, v.w);
+  table[q] = dvec4(h0, h1);
 #else
-  const dvec2 w = waves[e];  // a and b, each an fp32 complex word
-  const vec2 a = uintBitsToFloat(unpackDouble2x32(w.x)), b = uintBitsToFloat(unpackDouble2x32(w.y));
-  const float a_re = a.x, a_im = a.y, b_re = b.x, b_im = b.y;
+  const dvec4 u = waves[q];
+  const vec2 a0 = uintBitsToFloat(unpackDouble2x32(u.x)), b0 = uintBitsToFloat(unpackDouble2x32(u.y));
+  const vec2 a1 = uintBitsToFloat(unpackDouble2x32(u.z)), b1 = uintBitsToFloat(unpackDouble2x32(u.w));
+  const vec2 h0 = evolve(w.x, a0.x, a0.y, b0.x, b0.y), h1 = evolve(w.y, a1.x, a1.y, b1.x, b1.y);
+  table[q] = dvec2(packDouble2x32(floatBitsToUint(h0)), packDouble2x32(floatBitsToUint(h1)));
 #endif
-  const real hr = (a_re + b_re) * cr + (a_im - b_im) * sr;
-  const real hi = (a_im + b_im) * cr - (a_re - b_re) * sr;
-  const real lk = lambda_over_k[e];
-  const uint columns = frame.spectrum_columns;
-  store(j * columns + i, hr, hi, wave_number(i, nx, frame.dkx), wave_number(j, ny, frame.dky), lk);
-  if (PAIRS && i >= 1u && i < half_columns - 1u) {
-    // Column nx − i of the mirror row holds −k of this entry: conj(h̃), the same λ/|k|.
-    const uint mirror = (ny - j) % ny, column = nx - i;
-    store(mirror * columns + column, hr, -hi, wave_number(column, nx, frame.dkx),
-          wave_number(mirror, ny, frame.dky), lk);
-  }
 }

@@ -22,9 +22,9 @@ struct DeviceFrameTables {
   int nx = 0, ny = 0;
   // Per half-spectrum entry: ny rows of nx/2 + 1 columns, FFT order, row-major.
   const void *a_re = nullptr, *a_im = nullptr, *b_re = nullptr, *b_im = nullptr;
-  const void* lambda_over_k = nullptr;
   const double* omega = nullptr;
   double dkx = 0, dky = 0;   // Δkx, Δky: the kernels form kx and ky as the host's tables do
+  double choppiness = 0;     // λ: the kernels form λ/|k| from it
   const void* field_scale = nullptr;    // [8], packing order (synthesizer.cpp)
   const void* inverse_scale = nullptr;  // [8]
 };

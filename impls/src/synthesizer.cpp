@@ -478,8 +478,8 @@ void Synthesizer::State::make_device_frame() {
   tables.a_im = w.a_im.data();
   tables.b_re = w.b_re.data();
   tables.b_im = w.b_im.data();
-  tables.lambda_over_k = w.lambda_over_k.data();
   tables.omega = omega.data();
+  tables.choppiness = ocean_case.choppiness;
   tables.dkx = ocean_case.grid.dkx();
   tables.dky = ocean_case.grid.dky();
   tables.field_scale = scales<Real>(false);

@@ -250,6 +250,7 @@ void Context::open(int requested) {
   VkPhysicalDeviceFeatures supported{};
   vkGetPhysicalDeviceFeatures(physical_, &supported);
   float64_ = supported.shaderFloat64 == VK_TRUE;
+  storage_array_indexing_ = supported.shaderStorageBufferArrayDynamicIndexing == VK_TRUE;
   // Subgroup shuffles with full subgroups (Vulkan 1.3) for fft_lines_shuffle.
   VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
   if (properties_.apiVersion >= VK_API_VERSION_1_3 && app.apiVersion >= VK_API_VERSION_1_3) {
@@ -293,6 +294,7 @@ void Context::open(int requested) {
   queue_info.pQueuePriorities = &priority;
   VkPhysicalDeviceFeatures enabled{};
   enabled.shaderFloat64 = supported.shaderFloat64;
+  enabled.shaderStorageBufferArrayDynamicIndexing = supported.shaderStorageBufferArrayDynamicIndexing;
   VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   device_info.queueCreateInfoCount = 1;
   device_info.pQueueCreateInfos = &queue_info;
@@ -330,37 +332,58 @@ Context::~Context() {
   if (instance_) vkDestroyInstance(instance_, nullptr);
 }
 
+namespace {
+
+constexpr VkMemoryPropertyFlags kHostReadable = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                VK_MEMORY_PROPERTY_HOST_COHERENT_BIT |
+                                                VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+
+// The first memory type among `allowed` with every flag of each of `preferences` in turn;
+// −1 when none has.
+int memory_type(const VkPhysicalDeviceMemoryProperties& memory, std::uint32_t allowed,
+                std::initializer_list<VkMemoryPropertyFlags> preferences) {
+  for (VkMemoryPropertyFlags wanted : preferences) {
+    for (std::uint32_t t = 0; t < memory.memoryTypeCount; ++t) {
+      if ((allowed & (1u << t)) && (memory.memoryTypes[t].propertyFlags & wanted) == wanted) return int(t);
+    }
+  }
+  return -1;
+}
+
+}  // namespace
+
 Allocation Context::allocate(VkDeviceSize bytes, bool device_local) const {
+  // Device-local memory for the kernels' data; host-visible, coherent (and cached, when
+  // offered, for reading back) for staging, mapped.
+  if (device_local) return allocate_as(bytes, {VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT}, "device-local", Map::never);
+  return allocate_as(bytes, {kHostReadable, kHostReadable & ~VK_MEMORY_PROPERTY_HOST_CACHED_BIT},
+                     "host-visible coherent", Map::always);
+}
+
+Allocation Context::allocate_readable(VkDeviceSize bytes) const {
+  return allocate_as(bytes, {VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | kHostReadable, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT},
+                     "device-local", Map::if_readable);
+}
+
+// A buffer in the first memory type with all flags of one of `preferences`, tried in order.
+// Map::if_readable maps it only where the host reads it fast and without flushes: host visible,
+// coherent and cached.
+Allocation Context::allocate_as(VkDeviceSize bytes, std::initializer_list<VkMemoryPropertyFlags> preferences,
+                                const char* what, Map map) const {
   Allocation a;
   a.size = std::max<VkDeviceSize>(bytes, 16);
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = a.size;
-  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-               VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
+               VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   check(vkCreateBuffer(device_, &info, nullptr, &a.buffer), "vkCreateBuffer");
   VkMemoryRequirements needs;
   vkGetBufferMemoryRequirements(device_, a.buffer, &needs);
-  // Device-local memory for the kernels' data; host-visible, coherent (and cached, when
-  // offered, for reading back) for staging.
-  const VkMemoryPropertyFlags wanted =
-      device_local ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT
-                   : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-  int type = -1;
-  for (int pass = 0; pass < 2 && type < 0; ++pass) {
-    for (std::uint32_t t = 0; t < memory_.memoryTypeCount; ++t) {
-      if (!(needs.memoryTypeBits & (1u << t))) continue;
-      const auto flags = memory_.memoryTypes[t].propertyFlags;
-      if ((flags & wanted) != wanted) continue;
-      if (pass == 0 && !device_local && !(flags & VK_MEMORY_PROPERTY_HOST_CACHED_BIT)) continue;
-      type = int(t);
-      break;
-    }
-  }
+  const int type = memory_type(memory_, needs.memoryTypeBits, preferences);
   if (type < 0) {
     vkDestroyBuffer(device_, a.buffer, nullptr);
-    throw InternalError(std::string("vulkan: the device offers no ") +
-                        (device_local ? "device-local" : "host-visible coherent") + " memory");
+    throw InternalError(std::string("vulkan: the device offers no ") + what + " memory");
   }
   VkMemoryAllocateInfo allocate_info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   allocate_info.allocationSize = needs.size;
@@ -371,7 +394,10 @@ Allocation Context::allocate(VkDeviceSize bytes, bool device_local) const {
     check(allocated, "vkAllocateMemory");
   }
   check(vkBindBufferMemory(device_, a.buffer, a.memory, 0), "vkBindBufferMemory");
-  if (!device_local) check(vkMapMemory(device_, a.memory, 0, VK_WHOLE_SIZE, 0, &a.mapped), "vkMapMemory");
+  const VkMemoryPropertyFlags flags = memory_.memoryTypes[type].propertyFlags;
+  if (map == Map::always || (map == Map::if_readable && (flags & kHostReadable) == kHostReadable)) {
+    check(vkMapMemory(device_, a.memory, 0, VK_WHOLE_SIZE, 0, &a.mapped), "vkMapMemory");
+  }
   return a;
 }
 
@@ -466,8 +492,7 @@ std::vector<double> Context::timestamp_seconds(const Slot& slot, std::uint32_t c
 const Pipeline& Context::pipeline(const std::string& module_name,
                                   const std::vector<std::uint32_t>& spirv,
                                   const std::vector<std::uint32_t>& specialization,
-                                  std::uint32_t storage_buffers, std::uint32_t dynamic_buffers,
-                                  std::uint32_t push_bytes, bool full_subgroups) const {
+                                  const PipelineShape& shape) const {
   std::lock_guard lock(pipelines_mutex_);
   auto key = std::make_tuple(module_name, specialization);
   if (auto found = pipelines_.find(key); found != pipelines_.end()) return *found->second;
@@ -479,26 +504,24 @@ const Pipeline& Context::pipeline(const std::string& module_name,
     check(vkCreateShaderModule(device_, &info, nullptr, &module), "vkCreateShaderModule");
   }
   auto p = std::make_unique<Pipeline>();
-  p->storage_buffers = storage_buffers;
-  p->dynamic_buffers = dynamic_buffers;
-  std::vector<VkDescriptorSetLayoutBinding> bindings(storage_buffers);
-  for (std::uint32_t b = 0; b < storage_buffers; ++b) {
+  p->shape = shape;
+  std::vector<VkDescriptorSetLayoutBinding> bindings(shape.bindings.size());
+  for (std::uint32_t b = 0; b < bindings.size(); ++b) {
     bindings[b].binding = b;
-    bindings[b].descriptorType = b < dynamic_buffers ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC
-                                                     : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    bindings[b].descriptorCount = 1;
+    bindings[b].descriptorType = shape.bindings[b].type;
+    bindings[b].descriptorCount = shape.bindings[b].count;
     bindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
   }
   VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  set_info.bindingCount = storage_buffers;
+  set_info.bindingCount = std::uint32_t(bindings.size());
   set_info.pBindings = bindings.data();
   check(vkCreateDescriptorSetLayout(device_, &set_info, nullptr, &p->set_layout),
         "vkCreateDescriptorSetLayout");
-  VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes};
+  VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, shape.push_bytes};
   VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   layout_info.setLayoutCount = 1;
   layout_info.pSetLayouts = &p->set_layout;
-  layout_info.pushConstantRangeCount = push_bytes ? 1 : 0;
+  layout_info.pushConstantRangeCount = shape.push_bytes ? 1 : 0;
   layout_info.pPushConstantRanges = &range;
   check(vkCreatePipelineLayout(device_, &layout_info, nullptr, &p->layout), "vkCreatePipelineLayout");
   std::vector<VkSpecializationMapEntry> entries(specialization.size());
@@ -510,7 +533,8 @@ const Pipeline& Context::pipeline(const std::string& module_name,
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  if (full_subgroups) info.stage.flags = VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT;
+  if (shape.full_subgroups) info.stage.flags = VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT;
+  if (shape.dispatch_base) info.flags = VK_PIPELINE_CREATE_DISPATCH_BASE_BIT;
   info.stage.module = module;
   info.stage.pName = "main";
   info.stage.pSpecializationInfo = &special;
@@ -520,6 +544,15 @@ const Pipeline& Context::pipeline(const std::string& module_name,
   auto& stored = pipelines_[key];
   stored = std::move(p);
   return *stored;
+}
+
+void Context::host_barrier(VkCommandBuffer commands) {
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(commands,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
 void Context::barrier(VkCommandBuffer commands) {

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -41,13 +42,31 @@ struct Slot {
 };
 constexpr std::uint32_t kTimestamps = 4;
 
-// A compiled compute pipeline with its layout: set 0 holds `storage_buffers` storage buffers
-// (the first `dynamic_buffers` of them dynamic), and `push_bytes` bytes of push constants.
+// A binding's window of a buffer.
+struct Window {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceSize offset = 0, range = 0;
+};
+
+// What a pipeline's layout holds: set 0's bindings 0, 1, … (each a descriptor type and how many
+// descriptors), and `push_bytes` bytes of push constants.
+struct PipelineShape {
+  struct Binding {
+    VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    std::uint32_t count = 1;
+  };
+  std::vector<Binding> bindings;
+  std::uint32_t push_bytes = 0;
+  bool full_subgroups = false;  // VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT
+  bool dispatch_base = false;   // dispatched with a base workgroup (vkCmdDispatchBase)
+};
+
+// A compiled compute pipeline with its layout.
 struct Pipeline {
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkPipeline pipeline = VK_NULL_HANDLE;
-  std::uint32_t storage_buffers = 0, dynamic_buffers = 0;
+  PipelineShape shape;
 };
 
 class Context {
@@ -64,6 +83,8 @@ class Context {
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
   bool float64() const { return float64_; }
+  // shaderStorageBufferArrayDynamicIndexing (enabled where offered).
+  bool storage_array_indexing() const { return storage_array_indexing_; }
   // The subgroup size when compute shaders may shuffle within subgroups and require them full
   // (subgroup shuffles in compute, Vulkan 1.3's computeFullSubgroups, a power of two ≥ 8);
   // 0 otherwise. Pipelines that require full subgroups need a workgroup width that is a
@@ -81,6 +102,11 @@ class Context {
   // device_local: for the data the kernels work on; otherwise host visible and coherent,
   // mapped (staging). Throws std::bad_alloc when the device is out of memory.
   Allocation allocate(VkDeviceSize bytes, bool device_local) const;
+  // Device-local memory the host can read directly where the device has such memory that is
+  // also coherent and cached (a CPU device, integrated GPUs; mapped is set), so results need
+  // no copy through staging; else plain device-local memory (mapped is null) — a discrete
+  // GPU's host-visible device memory is uncached, and reading it from the host is slow.
+  Allocation allocate_readable(VkDeviceSize bytes) const;
   void free(Allocation& allocation) const;
 
   Slot acquire() const;
@@ -93,18 +119,23 @@ class Context {
   // `count`: the slot's first `count` timestamps were written (at most kTimestamps).
   std::vector<double> timestamp_seconds(const Slot& slot, std::uint32_t count = kTimestamps) const;
 
-  // The pipeline of an embedded SPIR-V module with these specialization constants (cached).
+  // The pipeline of an embedded SPIR-V module with these specialization constants (cached;
+  // a module's pipelines all have the same shape).
   const Pipeline& pipeline(const std::string& module_name, const std::vector<std::uint32_t>& spirv,
                            const std::vector<std::uint32_t>& specialization,
-                           std::uint32_t storage_buffers, std::uint32_t dynamic_buffers,
-                           std::uint32_t push_bytes, bool full_subgroups = false) const;
+                           const PipelineShape& shape) const;
 
   // Barrier: compute (or transfer) writes before compute and transfer reads and writes.
   static void barrier(VkCommandBuffer commands);
+  // Barrier: compute and transfer writes before the host reads (after the fence).
+  static void host_barrier(VkCommandBuffer commands);
 
  private:
   Context() = default;
   void open(int index);
+  enum class Map { never, always, if_readable };
+  Allocation allocate_as(VkDeviceSize bytes, std::initializer_list<VkMemoryPropertyFlags> preferences,
+                         const char* what, Map map) const;
 
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
@@ -116,6 +147,7 @@ class Context {
   VkPhysicalDeviceProperties properties_{};
   VkPhysicalDeviceMemoryProperties memory_{};
   bool float64_ = false;
+  bool storage_array_indexing_ = false;
   std::uint32_t shuffle_subgroup_size_ = 0, max_subgroup_size_ = 0;
   int index_ = 0;
   std::string description_;
@@ -155,8 +187,11 @@ class DeviceBuffer final : public Buffer {
 const std::vector<std::uint32_t>& fft_lines_spirv(Precision precision);
 // fft_lines built with SWELL_SHUFFLE: needs subgroup shuffles and full subgroups.
 const std::vector<std::uint32_t>& fft_lines_shuffle_spirv(Precision precision);
-// The synthesizer's frame kernels (frame.hpp): the spectra at time t, and the six fields.
+// fft_lines built with SWELL_FRAME (and SWELL_SHUFFLE): the frame program's first and last
+// passes, which make the packed spectra and write the six fields (frame.cpp).
+const std::vector<std::uint32_t>& fft_frame_spirv(Precision precision);
+const std::vector<std::uint32_t>& fft_frame_shuffle_spirv(Precision precision);
+// The synthesizer's evolution kernel: h̃(k, t) of the half spectrum.
 const std::vector<std::uint32_t>& frame_evolve_spirv(Precision precision);
-const std::vector<std::uint32_t>& frame_unpack_spirv(Precision precision);
 
 }  // namespace swell::impls::vk

@@ -18,7 +18,31 @@ namespace {
 // Flags of impls/shaders/fft_lines.comp.
 constexpr std::uint32_t kInverse = 1, kRealInput = 2, kHermitian = 4, kRealOutput = 8,
                         kLimit = 16, kSplitTwiddle = 32, kSplitByHi = 64,
-                        kSourceLineFastest = 128, kDestinationLineFastest = 256;
+                        kSourceLineFastest = 128, kDestinationLineFastest = 256,
+                        kFrameSource = 512, kFrameFields = 1024, kFrameJacobian = 2048;
+
+// Positions in a pass's specialization constants (fft_lines.comp's constant_id): the five of
+// the shape, then PassConstants (5 … 19), PING_PONG and RADIX8_STAGES; a frame pass appends
+// FRAME_NY, PAIRS, JACOBIAN_FIRST and BATCH_IN_X (22 … 25).
+constexpr std::size_t kInBatchConstant = 9, kFlagsConstant = 16, kJacobianFirstConstant = 24;
+
+// Bindings of fft_lines.comp: source, destination (dynamic: a batch beyond one binding is
+// bound one transform at a time), the two twiddle tables; a frame pass adds the probe and the
+// frame's constants (uniform).
+PipelineShape line_shape(bool shuffle, bool frame) {
+  PipelineShape shape;
+  shape.bindings = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC},
+                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC},
+                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+  if (frame) {
+    shape.bindings.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+    shape.bindings.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER});
+    shape.dispatch_base = true;
+  }
+  shape.full_subgroups = shuffle;
+  return shape;
+}
 
 std::uint32_t log2_of(std::uint32_t n) { return std::uint32_t(std::countr_zero(n)); }
 
@@ -35,8 +59,9 @@ std::uint32_t shared_points(const Context& context, Precision precision) {
 }  // namespace
 
 FftProgram::FftProgram(std::shared_ptr<const Context> context, const TransformSpec& spec,
-                       bool subgroups)
+                       bool subgroups, const FrameIo* frame)
     : context_(std::move(context)), spec_(spec), subgroups_(subgroups) {
+  if (frame) frame_ = *frame;
   const auto& limits = context_->limits();
   const std::size_t real = real_size(spec.precision);
   const std::uint32_t nx = std::uint32_t(spec.nx), ny = std::uint32_t(spec.ny);
@@ -84,6 +109,7 @@ FftProgram::FftProgram(std::shared_ptr<const Context> context, const TransformSp
       }
       break;
   }
+  make_pipelines();
   if (per_batch_) {
     // Dynamic offsets (uint32) of every transform of the batch, on every array a pass binds.
     for (const Pass& pass : passes_) {
@@ -172,9 +198,12 @@ void FftProgram::add_axis(bool x_axis, std::uint32_t n, std::uint32_t columns, T
       c.in_lo = source_row;
       c.out_lo = destination_row;
       c.in_element = c.out_element = 1;
-      const std::uint32_t rows = per_batch_ ? ny : ny * std::uint32_t(spec_.howmany);
+      // A frame program keeps each plane's rows in its own workgroups (z = plane): its last
+      // pass dispatches the plane that makes J after the others (fft_lines.comp, SWELL_FRAME).
+      const bool fold = !per_batch_ && !frame_;
+      const std::uint32_t rows = fold ? ny * std::uint32_t(spec_.howmany) : ny;
       add_line_pass(n, rows, 1, c, source, destination, in_bytes, out_bytes, in_batch, out_batch, -1);
-      if (!per_batch_) passes_.back().whole_batch_in_lines = true;
+      passes_.back().whole_batch_in_lines = fold;
     } else {  // lo counts columns, read and written row by row
       c.in_lo = c.out_lo = 1;
       c.in_element = source_row;
@@ -290,12 +319,11 @@ void FftProgram::add_line_pass(std::uint32_t n, std::uint32_t lines_lo, std::uin
                          limits.maxComputeSharedMemorySize;
   specialization.push_back(ping_pong ? 1 : 0);
   specialization.push_back(radix8_stages);
-  const bool f32 = spec_.precision == Precision::f32;
   Pass pass;
-  pass.pipeline = shuffle ? &context_->pipeline(f32 ? "fft_lines_shuffle_fp32" : "fft_lines_shuffle_fp64",
-                                                fft_lines_shuffle_spirv(spec_.precision), specialization, 4, 2, 0, true)
-                          : &context_->pipeline(f32 ? "fft_lines_fp32" : "fft_lines_fp64",
-                                                fft_lines_spirv(spec_.precision), specialization, 4, 2, 0);
+  pass.specialization = std::move(specialization);
+  pass.shuffle = shuffle;
+  pass.source_batch = source_batch;
+  pass.destination_batch = destination_batch;
   pass.source = source;
   pass.destination = destination;
   pass.groups_x = (lines_lo + lines - 1) / lines;
@@ -314,6 +342,62 @@ void FftProgram::add_line_pass(std::uint32_t n, std::uint32_t lines_lo, std::uin
   passes_.push_back(pass);
 }
 
+// Each pass's pipeline, once the passes are known: in a frame program the first pass reads
+// the table (FRAME_SOURCE) and the last leaves the fields in its destination (FRAME_FIELDS),
+// each through the fft_frame variant, with the frame's constants. The table is not an array of
+// the batch: IN_BATCH then gives the virtual spectra's plane size, and a dispatch's base
+// workgroup z (or BATCH_IN_X) the plane.
+void FftProgram::make_pipelines() {
+  const std::string precision = spec_.precision == Precision::f32 ? "_fp32" : "_fp64";
+  for (std::size_t i = 0; i < passes_.size(); ++i) {
+    Pass& pass = passes_[i];
+    std::vector<std::uint32_t> constants = pass.specialization;
+    if (frame_) {
+      pass.reads_table = pass.source == Target::input;
+      pass.writes_fields = i + 1 == passes_.size();
+    }
+    const std::string module = (pass.frame() ? "fft_frame" : "fft_lines") +
+                               std::string(pass.shuffle ? "_shuffle" : "") + precision;
+    const auto& spirv = pass.frame() ? (pass.shuffle ? fft_frame_shuffle_spirv(spec_.precision)
+                                                     : fft_frame_spirv(spec_.precision))
+                                     : (pass.shuffle ? fft_lines_shuffle_spirv(spec_.precision)
+                                                     : fft_lines_spirv(spec_.precision));
+    const PipelineShape shape = line_shape(pass.shuffle, pass.frame());
+    if (!pass.frame()) {
+      pass.pipeline = &context_->pipeline(module, spirv, constants, shape);
+      continue;
+    }
+    if (pass.reads_table) {
+      constants[kFlagsConstant] |= kFrameSource;
+      constants[kInBatchConstant] = pass.source_batch;
+      pass.source_stride_bytes = 0;  // every plane reads the one table
+    }
+    if (pass.writes_fields) constants[kFlagsConstant] |= kFrameFields;
+    // The first pass reads the one table for every plane: with the planes interleaved along x,
+    // the workgroups of the same rows of every plane run one after the other and find the
+    // table's rows in the cache (each read from memory about once, not once a plane: 1.3× the
+    // bare pass's time at 1024² on lavapipe without, 1.0× with).
+    if (pass.reads_table && !pass.writes_fields && !per_batch_ &&
+        std::uint64_t(pass.groups_x) * spec_.howmany <= context_->limits().maxComputeWorkGroupCount[0]) {
+      pass.batch_in_x = std::uint32_t(spec_.howmany);
+      pass.groups_x *= pass.batch_in_x;
+    }
+    constants.push_back(std::uint32_t(spec_.ny));
+    constants.push_back(frame_->pairs ? 1 : 0);
+    constants.push_back(0);  // JACOBIAN_FIRST
+    constants.push_back(pass.batch_in_x);
+    pass.pipeline = &context_->pipeline(module, spirv, constants, shape);
+    if (pass.writes_fields) {
+      // The last plane's own pipeline: it makes J from the planes before it (fft_lines.comp,
+      // SWELL_FRAME), which are, dispatched one transform at a time, its destination binding's
+      // window (record()).
+      constants[kFlagsConstant] |= kFrameJacobian;
+      constants[kJacobianFirstConstant] = per_batch_ ? jacobian_first_plane() : 0;
+      pass.jacobian_pipeline = &context_->pipeline(module, spirv, constants, shape);
+    }
+  }
+}
+
 Workspace* FftProgram::acquire() const {
   {
     std::lock_guard lock(workspaces_mutex_);
@@ -327,12 +411,18 @@ Workspace* FftProgram::acquire() const {
   if (temp_a_bytes_) w->temp_a = context_->allocate(temp_a_bytes_, true);
   if (temp_b_bytes_) w->temp_b = context_->allocate(temp_b_bytes_, true);
   const std::uint32_t sets = std::uint32_t(passes_.size());
-  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 2 * sets},
-                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets}};
+  std::vector<VkDescriptorPoolSize> sizes;
+  for (const Pass& pass : passes_) {
+    for (const auto& binding : pass.pipeline->shape.bindings) {
+      auto same = std::find_if(sizes.begin(), sizes.end(), [&](const auto& s) { return s.type == binding.type; });
+      if (same == sizes.end()) sizes.push_back({binding.type, binding.count});
+      else same->descriptorCount += binding.count;
+    }
+  }
   VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pool_info.maxSets = sets;
-  pool_info.poolSizeCount = 2;
-  pool_info.pPoolSizes = sizes;
+  pool_info.poolSizeCount = std::uint32_t(sizes.size());
+  pool_info.pPoolSizes = sizes.data();
   check(vkCreateDescriptorPool(context_->device(), &pool_info, nullptr, &w->pool), "vkCreateDescriptorPool");
   std::vector<VkDescriptorSetLayout> layouts;
   for (const auto& pass : passes_) layouts.push_back(pass.pipeline->set_layout);
@@ -356,7 +446,15 @@ void FftProgram::release(Workspace* workspace) const {
 // transform.
 VkDeviceSize FftProgram::window(const Pass& pass, bool source) const {
   const VkDeviceSize stride = source ? pass.source_stride_bytes : pass.destination_stride_bytes;
-  return per_batch_ ? stride : stride * VkDeviceSize(spec_.howmany);
+  if (!per_batch_) return stride * VkDeviceSize(spec_.howmany);
+  // A frame's J plane reads the planes from jacobian_first_plane() on through its destination.
+  return !source && pass.writes_fields ? stride * (spec_.howmany - 1 - jacobian_first_plane()) : stride;
+}
+
+// The first plane a frame's J is made from: the plane before the last (pairs: λ∂Dx/∂x beside
+// λDy), or the two before it (c2r: λ∂Dx/∂x and λ∂Dy/∂y).
+std::uint32_t FftProgram::jacobian_first_plane() const {
+  return std::uint32_t(spec_.howmany) - (frame_->pairs ? 2 : 3);
 }
 
 void FftProgram::record(VkCommandBuffer commands, Workspace& w, VkBuffer in, VkBuffer out) const {
@@ -371,22 +469,35 @@ void FftProgram::record(VkCommandBuffer commands, Workspace& w, VkBuffer in, VkB
   };
   if (w.bound_in != in || w.bound_out != out) {
     // The sets are this workspace's alone, and no submission that uses them is in flight.
-    std::vector<VkDescriptorBufferInfo> infos(4 * passes_.size());
+    std::vector<std::vector<Window>> bindings;
+    for (const Pass& pass : passes_) {
+      std::vector<Window> b = {
+          pass.reads_table ? frame_->table : Window{buffer_of(pass.source), 0, window(pass, true)},
+          {buffer_of(pass.destination), 0, window(pass, false)},
+          {twiddles_[pass.line_twiddles].second.buffer, 0, VK_WHOLE_SIZE},
+          {twiddles_[pass.split_twiddles].second.buffer, 0, VK_WHOLE_SIZE}};
+      if (pass.frame()) {
+        b.push_back(frame_->probe);
+        b.push_back(frame_->constants);
+      }
+      bindings.push_back(std::move(b));
+    }
+    std::vector<VkDescriptorBufferInfo> infos;
+    for (const auto& b : bindings) {
+      for (const Window& window : b) infos.push_back({window.buffer, window.offset, window.range});
+    }
     std::vector<VkWriteDescriptorSet> writes;
+    std::size_t next = 0;
     for (std::size_t p = 0; p < passes_.size(); ++p) {
-      const Pass& pass = passes_[p];
-      infos[4 * p + 0] = {buffer_of(pass.source), 0, window(pass, true)};
-      infos[4 * p + 1] = {buffer_of(pass.destination), 0, window(pass, false)};
-      infos[4 * p + 2] = {twiddles_[pass.line_twiddles].second.buffer, 0, VK_WHOLE_SIZE};
-      infos[4 * p + 3] = {twiddles_[pass.split_twiddles].second.buffer, 0, VK_WHOLE_SIZE};
-      for (std::uint32_t b = 0; b < 4; ++b) {
+      const PipelineShape& shape = passes_[p].pipeline->shape;
+      for (std::uint32_t b = 0; b < shape.bindings.size(); ++b) {
         VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         write.dstSet = w.sets[p];
         write.dstBinding = b;
-        write.descriptorCount = 1;
-        write.descriptorType = b < 2 ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC
-                                     : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        write.pBufferInfo = &infos[4 * p + b];
+        write.descriptorCount = shape.bindings[b].count;
+        write.descriptorType = shape.bindings[b].type;
+        write.pBufferInfo = &infos[next];
+        next += shape.bindings[b].count;
         writes.push_back(write);
       }
     }
@@ -394,23 +505,48 @@ void FftProgram::record(VkCommandBuffer commands, Workspace& w, VkBuffer in, VkB
     w.bound_in = in;
     w.bound_out = out;
   }
+  const std::uint32_t howmany = std::uint32_t(spec_.howmany);
   for (std::size_t p = 0; p < passes_.size(); ++p) {
     const Pass& pass = passes_[p];
     Context::barrier(commands);
     vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline->pipeline);
-    const int dispatches = per_batch_ ? spec_.howmany : 1;
-    for (int b = 0; b < dispatches; ++b) {
-      // The transforms of a batch touch disjoint windows, but synchronization validation
-      // (1.3.239) reports the dispatches on one buffer as hazards; a barrier between them costs
-      // nothing next to a transform this large.
-      if (b > 0) Context::barrier(commands);
+    const auto bind = [&](std::uint32_t b, std::uint32_t destination_b) {
       const std::uint32_t offsets[2] = {std::uint32_t(b * pass.source_stride_bytes),
-                                        std::uint32_t(b * pass.destination_stride_bytes)};
+                                        std::uint32_t(destination_b * pass.destination_stride_bytes)};
       vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline->layout, 0,
                               1, &w.sets[p], 2, offsets);
-      vkCmdDispatch(commands, pass.groups_x, pass.groups_y,
-                    per_batch_ || pass.whole_batch_in_lines ? 1u : std::uint32_t(spec_.howmany));
+    };
+    // The last plane of a frame makes J from what the plane before left in the fields: it runs
+    // after the others, behind a barrier, with its own pipeline.
+    const auto jacobian_plane = [&] {
+      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pass.jacobian_pipeline->pipeline);
+    };
+    if (per_batch_) {
+      for (std::uint32_t b = 0; b < howmany; ++b) {
+        // The transforms of a batch touch disjoint windows, but synchronization validation
+        // (1.3.239) reports the dispatches on one buffer as hazards; a barrier between them
+        // costs nothing next to a transform this large.
+        if (b > 0) Context::barrier(commands);
+        const bool jacobian = pass.writes_fields && b + 1 == howmany;
+        if (jacobian) jacobian_plane();
+        bind(b, jacobian ? jacobian_first_plane() : b);
+        // A frame pass learns its plane from the base workgroup z.
+        if (pass.frame()) vkCmdDispatchBase(commands, 0, 0, b, pass.groups_x, pass.groups_y, 1);
+        else vkCmdDispatch(commands, pass.groups_x, pass.groups_y, 1);
+      }
+      continue;
     }
+    bind(0, 0);
+    if (pass.writes_fields) {
+      vkCmdDispatchBase(commands, 0, 0, 0, pass.groups_x, pass.groups_y, howmany - 1);
+      Context::barrier(commands);
+      jacobian_plane();
+      bind(0, 0);
+      vkCmdDispatchBase(commands, 0, 0, howmany - 1, pass.groups_x, pass.groups_y, 1);
+      continue;
+    }
+    vkCmdDispatch(commands, pass.groups_x, pass.groups_y,
+                  pass.whole_batch_in_lines || pass.batch_in_x > 1 ? 1u : howmany);
   }
   Context::barrier(commands);
 }

@@ -4,6 +4,7 @@
 // submission both record it.
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include "context.hpp"
@@ -20,14 +21,32 @@ struct PassConstants {
 // Which buffer a pass reads or writes.
 enum class Target { input, output, temp_a, temp_b };
 
+// The synthesizer's frame program (frame.cpp): the batch of inverse transforms whose first pass
+// reads the evolution's half spectrum and makes the packed spectra, and whose last pass leaves
+// the six fields in its destination (fft_lines.comp, SWELL_FRAME: bindings 4 and 5).
+struct FrameIo {
+  bool pairs = true;  // 4 c2c of field pairs, or 8 c2r of one field each
+  Window table;       // the evolution's half spectrum h̃ (the first pass's source)
+  Window probe;       // the count of non-finite field values
+  Window constants;   // uniform: the field scales, inverse scales, Δkx, Δky, λ
+};
+
 struct Pass {
   const Pipeline* pipeline = nullptr;  // its addressing and flags are specialization constants
+  const Pipeline* jacobian_pipeline = nullptr;  // a frame's last pass: for the last plane
+  std::vector<std::uint32_t> specialization;
+  bool shuffle = false;                // the subgroup variant of the line kernel
   Target source = Target::input, destination = Target::output;
   std::uint32_t groups_x = 1, groups_y = 1;
   int line_twiddles = 0, split_twiddles = 0;   // indices into FftProgram::twiddles
+  std::uint32_t source_batch = 0, destination_batch = 0;  // elements of one transform
   VkDeviceSize source_stride_bytes = 0;        // one transform of the batch, on each side
   VkDeviceSize destination_stride_bytes = 0;
   bool whole_batch_in_lines = false;  // lines run through the batch: one workgroup layer (z = 1)
+  std::uint32_t batch_in_x = 1;       // transforms interleaved along x (fft_lines.comp BATCH_IN_X)
+  bool reads_table = false;           // frame: the first pass (FRAME_SOURCE)
+  bool writes_fields = false;         // frame: the last pass (FRAME_FIELDS)
+  bool frame() const { return reads_table || writes_fields; }
 };
 
 // What one execution owns: scratch arrays, descriptor sets, and (for host memory) device
@@ -44,18 +63,22 @@ class FftProgram {
  public:
   // Throws UnsupportedTransform naming the rule when the device cannot run `spec`. subgroups:
   // use fft_lines_shuffle where the device and the pass allow it (else the portable kernel).
-  FftProgram(std::shared_ptr<const Context> context, const TransformSpec& spec, bool subgroups = true);
+  // frame: the synthesizer's frame program (spec: its batch of inverse transforms).
+  FftProgram(std::shared_ptr<const Context> context, const TransformSpec& spec, bool subgroups = true,
+             const FrameIo* frame = nullptr);
   ~FftProgram();
   FftProgram(const FftProgram&) = delete;
   FftProgram& operator=(const FftProgram&) = delete;
 
   const TransformSpec& spec() const { return spec_; }
+  bool subgroups() const { return subgroups_; }
   const Context& context() const { return *context_; }
   // A workspace for one execution at a time (created when none is free).
   Workspace* acquire() const;
   void release(Workspace* workspace) const;
   // Records the passes on `in` → `out` (device buffers of the spec's sizes) into `commands`,
-  // with a barrier before each pass and after the last.
+  // with a barrier before each pass and after the last. A frame program reads the table for
+  // `in` and writes the fields for its last pass's destination.
   void record(VkCommandBuffer commands, Workspace& workspace, VkBuffer in, VkBuffer out) const;
   // Host memory: upload, record, download, with the device's timestamps of the three phases.
   std::vector<double> execute_host(const void* in, void* out) const;
@@ -73,6 +96,8 @@ class FftProgram {
                      std::uint32_t source_batch, std::uint32_t destination_batch,
                      int split_twiddles);
   int twiddle_table(std::uint32_t n);
+  void make_pipelines();
+  std::uint32_t jacobian_first_plane() const;
   VkDeviceSize window(const Pass& pass, bool source) const;
 
   std::shared_ptr<const Context> context_;
@@ -82,6 +107,7 @@ class FftProgram {
   VkDeviceSize temp_a_bytes_ = 0, temp_b_bytes_ = 0;
   bool per_batch_ = false;  // one dispatch per transform of the batch (arrays beyond the range)
   bool subgroups_ = true;   // fft_lines_shuffle allowed (backend option subgroups)
+  std::optional<FrameIo> frame_;
   mutable std::mutex workspaces_mutex_;
   mutable std::vector<std::unique_ptr<Workspace>> workspaces_;
   mutable std::vector<Workspace*> free_workspaces_;

@@ -2,18 +2,29 @@
 // backend's frame is one submission"). At construction the tables of the waves go to device
 // memory once; each frame is then one command buffer and one fence wait:
 //
-//   evolution (impls/shaders/frame_evolve.comp)   the packed spectra at t, as assemble() does
-//   the plan's passes (FftProgram::record)        the batch of inverse transforms, in place
-//   unpack (impls/shaders/frame_unpack.comp)      the six fields and the non-finite probe
-//   copy to a host-visible staging buffer         only because evaluate() returns host memory
+//   evolution (impls/shaders/frame_evolve.comp)    h̃(k, t) of the half spectrum, one phase a wave
+//   the frame program (FftProgram with FrameIo)    the batch of inverse transforms, whose first
+//                                                  pass makes the packed spectra from h̃ and whose
+//                                                  last pass writes the six fields and counts
+//                                                  non-finite values (fft_lines.comp, SWELL_FRAME)
+//   the fields to the host                         read where they are when the device's memory
+//                                                  is host-readable (lavapipe, integrated GPUs),
+//                                                  else copied through a staging buffer
 //
-// record_frame() records the first three alone and leaves the fields in a device buffer: a
+// On lavapipe a frame costs what its storage-buffer accesses cost (docs/vulkan.md §Kernels):
+// a kernel that wrote the eight packed spectra and one that read the transforms back to make
+// the fields cost 1.4–1.8× the transforms themselves; fused into the passes, the frame reads
+// and writes little more than the bare transforms do.
+//
+// record_frame() records the first two alone and leaves the fields in device memory: a
 // device-only evaluation (a renderer that samples the fields where they are) is that call into
-// its own command buffer, without the copy and without the host ever touching the frame.
+// its own command buffer, without the host ever touching the frame.
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include <fmt/format.h>
@@ -27,43 +38,15 @@ namespace {
 constexpr int kRealFields = 8;  // packing order of synthesizer.cpp
 constexpr int kFields = 6;      // reference::kAllFields
 
-// Invocations per workgroup of both kernels. They use no shared memory and no barrier, so the
-// size only sets how work is handed out: 128 is a multiple of every GPU's subgroup (32, 64) and
-// of lavapipe's 8 lanes, and few enough that the last, partial workgroup of a row costs little.
+// Invocations per workgroup of the evolution kernel. It uses no shared memory and no barrier,
+// so the size only sets how work is handed out: 128 is a multiple of every GPU's subgroup
+// (32, 64) and of lavapipe's 8 lanes, and few enough that the padding of the last workgroup
+// costs little.
 constexpr std::uint32_t kLocalSize = 128;
 
-// The push constants of frame_evolve.comp and frame_unpack.comp, in their std430 layout: these
-// headers, then the eight (inverse) field scales in the synthesis precision.
-struct EvolveHeader {
-  double t = 0, dkx = 0, dky = 0;
-  std::uint32_t nx = 0, ny = 0, half_columns = 0, spectrum_columns = 0, plane_stride = 0,
-                reserved = 0;
-};
-static_assert(sizeof(EvolveHeader) == 48);
-struct UnpackHeader {
-  std::uint32_t count = 0, input_stride = 0, field_stride = 0, reserved = 0;
-};
-static_assert(sizeof(UnpackHeader) == 16);
-
-// Storage buffers each kernel binds (frame_evolve.comp: the waves, λ/|k|, ω and 8 planes;
-// frame_unpack.comp: the probe, 8 input planes, 6 fields).
-constexpr std::uint32_t kEvolveBuffers = 3 + kRealFields;
-constexpr std::uint32_t kUnpackBuffers = 1 + kRealFields + kFields;
-
-// A binding: a buffer's window (offset, range).
-struct Window {
-  VkBuffer buffer = VK_NULL_HANDLE;
-  VkDeviceSize offset = 0, range = 0;
-};
-
-// The bindings of `planes` planes of `plane_bytes` each from the start of `buffer`, in words of
-// `word_bytes`: one window per plane, or — when a plane's size is not a multiple of the
-// device's minStorageBufferOffsetAlignment (a grid of a few samples) — the whole buffer for
-// every one, plane p then starting at word p · stride.
-struct Planes {
-  std::vector<Window> windows;
-  std::uint32_t stride = 0;
-};
+// frame_evolve.comp takes two entries an invocation, and the tables are padded to whole
+// workgroups of it.
+constexpr std::uint32_t kEntriesPerGroup = 2 * kLocalSize;
 
 class FrameProgram final : public DeviceFrame {
  public:
@@ -76,37 +59,39 @@ class FrameProgram final : public DeviceFrame {
   std::size_t evaluate(double t, std::span<std::byte> fields, FrameTimings& timings) const override;
 
  private:
-  // Records the frame at t — evolution, transforms, unpack — into `commands`, leaving the six
-  // fields in fields_ and the count of non-finite samples in probe_, with no barrier after the
-  // unpack (the caller's next use decides which one it needs). With `stamps`, timestamps 1 and
-  // 2 of that pool are written after the evolution and after the transforms. The caller holds mutex_ until
-  // the submission has completed: the buffers and the transform's workspace are this
-  // program's alone.
+  // Records the frame at t — evolution, then the frame program — into `commands`, leaving the
+  // six fields in fields_ and the count of non-finite values in probe_, with a barrier after
+  // the last pass. With `stamps`, timestamp 1 of that pool is written after the evolution and
+  // timestamp 2 after the last pass. The caller holds mutex_ until the submission has
+  // completed: the buffers and the program's workspace are this frame's alone.
   void record_frame(VkCommandBuffer commands, double t, VkQueryPool stamps) const;
   Window whole(const Allocation& allocation) const;
-  Planes planes(const Allocation& allocation, int count, int bound, VkDeviceSize plane_bytes,
-                VkDeviceSize word_bytes) const;
-  void dispatch(VkCommandBuffer commands, std::uint64_t invocations) const;
   [[noreturn]] void refuse(const std::string& rule) const;
   void release();
+  // Where the fields are on the device: pairs, the packed spectra's first three planes; c2r,
+  // the output's first six.
+  const Allocation& field_memory() const { return pairs_ ? planes_ : fields_; }
+  // The three pair planes of the device's fields into the six fields of the frame's layout.
+  template <typename Real>
+  void split_pairs(const std::byte* pairs, std::byte* fields) const;
 
   std::shared_ptr<const Context> context_;
-  const FftProgram& transform_;  // the synthesizer's plan, which outlives this
   Precision precision_;
   bool pairs_;
-  std::uint32_t nx_, ny_, half_columns_, spectrum_columns_;
+  std::uint32_t nx_, ny_;
+  std::uint32_t entries_ = 0;  // of the half spectrum, (nx/2 + 1) · ny, padded to whole workgroups
+  std::uint32_t evolve_groups_x_ = 0, evolve_groups_y_ = 0;
   std::size_t real_;
-  VkDeviceSize fields_bytes_ = 0;
-  // Device memory: the waves' tables (written once), the spectra and their transforms (the
-  // same buffer for the in-place c2c batch), the six fields and the probe.
-  Allocation waves_, lambda_over_k_, omega_, spectra_, transformed_storage_, fields_, probe_;
-  Allocation staging_;  // host visible: the six fields, then the probe's count
-  const Allocation& transformed() const { return pairs_ ? spectra_ : transformed_storage_; }
+  VkDeviceSize fields_bytes_ = 0;    // the six fields the caller gets
+  // Device memory: the waves and ω (written once), the evolution's table (h̃ each frame, λ/|k|
+  // once), the packed spectra (pairs: the in-place c2c batch), the fields (and a scratch plane
+  // for the c2r packing), the probe, the frame's constants (host-visible uniform), and staging
+  // where the fields or the probe are not host-readable.
+  Allocation waves_, omega_, table_, planes_, fields_, probe_, constants_, staging_;
+  std::optional<FftProgram> program_;
   const Pipeline* evolve_ = nullptr;
-  const Pipeline* unpack_ = nullptr;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  VkDescriptorSet evolve_set_ = VK_NULL_HANDLE, unpack_set_ = VK_NULL_HANDLE;
-  std::vector<std::byte> evolve_push_, unpack_push_;  // header and scales (t set per frame)
+  VkDescriptorSet evolve_set_ = VK_NULL_HANDLE;
   Workspace* workspace_ = nullptr;
   // One frame in flight per program: evaluate() is const and may be called from several
   // threads; they take turns on the buffers above.
@@ -127,39 +112,27 @@ Window FrameProgram::whole(const Allocation& allocation) const {
   return {allocation.buffer, 0, allocation.size};
 }
 
-// `bound` bindings for `count` planes: pairs bind their 4 planes twice over, so that every
-// binding the shader declares is valid.
-Planes FrameProgram::planes(const Allocation& allocation, int count, int bound,
-                            VkDeviceSize plane_bytes, VkDeviceSize word_bytes) const {
-  const VkDeviceSize alignment = std::max<VkDeviceSize>(1, context_->limits().minStorageBufferOffsetAlignment);
-  Planes out;
-  if (plane_bytes % alignment != 0) {
-    out.windows.assign(std::size_t(bound), whole(allocation));
-    out.stride = std::uint32_t(plane_bytes / word_bytes);
-    return out;
-  }
-  if (plane_bytes > context_->limits().maxStorageBufferRange) {
-    refuse(fmt::format("a plane of {} bytes exceeds the device's maxStorageBufferRange of {} bytes",
-                       plane_bytes, context_->limits().maxStorageBufferRange));
-  }
-  for (int p = 0; p < bound; ++p) {
-    out.windows.push_back({allocation.buffer, VkDeviceSize(p % count) * plane_bytes, plane_bytes});
-  }
-  return out;
-}
-
 FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProgram& transform,
                            const DeviceFrameTables& tables)
     : context_(std::move(context)),
-      transform_(transform),
       precision_(tables.precision),
       pairs_(tables.pairs),
       nx_(std::uint32_t(tables.nx)),
       ny_(std::uint32_t(tables.ny)),
-      half_columns_(std::uint32_t(tables.nx / 2 + 1)),
-      spectrum_columns_(tables.pairs ? std::uint32_t(tables.nx) : std::uint32_t(tables.nx / 2 + 1)),
+
       real_(real_size(tables.precision)) {
   const auto& limits = context_->limits();
+  // The evolution's workgroups, along x and, beyond maxComputeWorkGroupCount[0], y (the kernel
+  // counts x fastest, then y); the tables are padded to as many entries as they take.
+  const std::uint64_t entries = std::uint64_t(tables.nx / 2 + 1) * std::uint64_t(tables.ny);
+  const std::uint64_t groups = (entries + kEntriesPerGroup - 1) / kEntriesPerGroup;
+  evolve_groups_x_ = std::uint32_t(std::min<std::uint64_t>(groups, limits.maxComputeWorkGroupCount[0]));
+  evolve_groups_y_ = std::uint32_t((groups + evolve_groups_x_ - 1) / evolve_groups_x_);
+  if (evolve_groups_y_ > limits.maxComputeWorkGroupCount[1]) {
+    refuse(fmt::format("{} workgroups exceed the device's maxComputeWorkGroupCount {}×{}", groups,
+                       limits.maxComputeWorkGroupCount[0], limits.maxComputeWorkGroupCount[1]));
+  }
+  entries_ = evolve_groups_x_ * evolve_groups_y_ * kEntriesPerGroup;
   // The phases ωt reach 2⁵⁰ rad (reference::kLargestPhase) and must come out right to the
   // synthesis precision: the kernel reduces them in double (frame_evolve.comp). A device without
   // shaderFloat64 is refused; a float-float (two-float) reduction would serve it and is not
@@ -169,12 +142,16 @@ FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProg
            "which needs shaderFloat64, and this device does not offer it (a float-float "
            "reduction is not implemented)");
   }
-  if (limits.maxPerStageDescriptorStorageBuffers < kUnpackBuffers) {
-    refuse(fmt::format("the unpack kernel binds {} storage buffers, beyond the device's "
+  if (limits.maxPerStageDescriptorStorageBuffers < 12) {
+    refuse(fmt::format("the frame's passes bind 12 storage buffers, beyond the device's "
                        "maxPerStageDescriptorStorageBuffers of {}",
-                       kUnpackBuffers, limits.maxPerStageDescriptorStorageBuffers));
+                       limits.maxPerStageDescriptorStorageBuffers));
   }
-  const TransformSpec& spec = transform_.spec();
+  if (!context_->storage_array_indexing()) {
+    refuse("the frame's last pass picks its fields from an array of storage buffers by plane, "
+           "which needs shaderStorageBufferArrayDynamicIndexing, and this device does not offer it");
+  }
+  const TransformSpec& spec = transform.spec();
   const bool expected = spec.nx == tables.nx && spec.ny == tables.ny &&
                         spec.precision == precision_ && spec.direction == Direction::inverse &&
                         (pairs_ ? spec.kind == Kind::c2c && spec.howmany == 4 &&
@@ -186,14 +163,15 @@ FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProg
                         " is not the synthesizer's batch of inverse transforms");
   }
 
-  // The tables, in the shaders' layouts: (a, b) interleaved per entry (in fp32 two complex
-  // words), then λ/|k| and ω.
-  const std::size_t entries = std::size_t(half_columns_) * ny_;
+  // The tables, in frame_evolve.comp's layouts: (a, b) per half-spectrum entry (in fp32 two
+  // complex words), and ω.
   const auto* a_re = static_cast<const std::byte*>(tables.a_re);
   const auto* a_im = static_cast<const std::byte*>(tables.a_im);
   const auto* b_re = static_cast<const std::byte*>(tables.b_re);
   const auto* b_im = static_cast<const std::byte*>(tables.b_im);
-  std::vector<std::byte> waves(entries * 4 * real_);
+  std::vector<std::byte> waves(entries_ * 4 * real_);  // the padding: zeros (h̃ = 0 there)
+  std::vector<double> omega(entries_, 0.0);
+  std::copy(tables.omega, tables.omega + entries, omega.begin());
   for (std::size_t e = 0; e < entries; ++e) {
     std::memcpy(&waves[(4 * e + 0) * real_], a_re + e * real_, real_);
     std::memcpy(&waves[(4 * e + 1) * real_], a_im + e * real_, real_);
@@ -205,32 +183,40 @@ FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProg
     const void* data;
     std::size_t bytes;
   };
-  const std::vector<Upload> uploads = {
-      {&waves_, waves.data(), waves.size()},
-      {&lambda_over_k_, tables.lambda_over_k, entries * real_},
-      {&omega_, tables.omega, entries * sizeof(double)}};
+  const std::vector<Upload> uploads = {{&waves_, waves.data(), waves.size()},
+                                       {&omega_, omega.data(), omega.size() * sizeof(double)}};
 
+  // The fields on the device (fft_lines.comp, FRAME_FIELDS) are where the last pass stores:
+  // pairs, in place over the packed spectra, whose first three planes then hold (h, slope_x),
+  // (slope_y, disp_x), (disp_y, J), which evaluate() splits into the six fields; c2r, the eight
+  // real planes of the output, the first six of them the six fields.
   const VkDeviceSize count = VkDeviceSize(nx_) * ny_;
-  const VkDeviceSize spectrum_plane = VkDeviceSize(spectrum_columns_) * ny_ * 2 * real_;
-  const VkDeviceSize transformed_plane = pairs_ ? count * 2 * real_ : count * real_;
   fields_bytes_ = kFields * count * real_;
-  // fp32 unpacks two adjacent samples per invocation (frame_unpack.comp).
-  if (precision_ == Precision::f32 && count % 2 != 0) {
-    refuse("the fp32 unpack takes samples two at a time, and nx·ny is odd");
-  }
   try {
     std::size_t staged = 0;
     for (const auto& u : uploads) {
       *u.target = context_->allocate(u.bytes, true);
       staged += u.bytes;
     }
-    spectra_ = context_->allocate(spec.input_bytes(), true);
-    if (!pairs_) transformed_storage_ = context_->allocate(spec.output_bytes(), true);
-    fields_ = context_->allocate(fields_bytes_, true);
-    probe_ = context_->allocate(sizeof(std::uint32_t), true);
-    staging_ = context_->allocate(fields_bytes_ + sizeof(std::uint32_t), false);
+    table_ = context_->allocate(entries_ * 2 * real_, true);  // h̃, written by every frame's evolution
+    if (pairs_) planes_ = context_->allocate_readable(spec.input_bytes());
+    else fields_ = context_->allocate_readable(spec.output_bytes());
+    probe_ = context_->allocate_readable(sizeof(std::uint32_t));
+    if (!field_memory().mapped || !probe_.mapped) {
+      staging_ = context_->allocate(fields_bytes_ + sizeof(std::uint32_t), false);
+    }
 
-    // One upload for all tables, through a staging buffer freed at once.
+    // The frame's constants (fft_lines.comp's FrameConstants, std140): the eight field scales,
+    // the eight inverse scales, Δkx, Δky and λ. Host-visible and written once, before any
+    // submission reads them.
+    constants_ = context_->allocate(16 * real_ + 3 * sizeof(double), false);
+    auto* constants = static_cast<std::byte*>(constants_.mapped);
+    std::memcpy(constants, tables.field_scale, kRealFields * real_);
+    std::memcpy(constants + kRealFields * real_, tables.inverse_scale, kRealFields * real_);
+    const double numbers[3] = {tables.dkx, tables.dky, tables.choppiness};
+    std::memcpy(constants + 16 * real_, numbers, sizeof numbers);
+
+    // One upload for the waves and ω, through a staging buffer freed at once.
     Allocation upload = context_->allocate(staged, false);
     std::vector<VkBufferCopy> regions;
     VkDeviceSize at = 0;
@@ -251,79 +237,44 @@ FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProg
     }
     context_->free(upload);
 
-    // The bindings. Evolution: the three tables, then the eight output planes (complex words);
-    // unpack: the probe, the eight input planes and the six fields (64-bit words).
-    const int planes_used = pairs_ ? 4 : kRealFields;
-    const Planes spectra = planes(spectra_, planes_used, kRealFields, spectrum_plane, 2 * real_);
-    const Planes inputs = planes(transformed(), planes_used, kRealFields, transformed_plane, 8);
-    const Planes outputs = planes(fields_, kFields, kFields, count * real_, 8);
-    std::vector<Window> evolve_windows = {whole(waves_), whole(lambda_over_k_), whole(omega_)};
-    evolve_windows.insert(evolve_windows.end(), spectra.windows.begin(), spectra.windows.end());
-    std::vector<Window> unpack_windows = {whole(probe_)};
-    unpack_windows.insert(unpack_windows.end(), inputs.windows.begin(), inputs.windows.end());
-    unpack_windows.insert(unpack_windows.end(), outputs.windows.begin(), outputs.windows.end());
+    FrameIo io;
+    io.pairs = pairs_;
+    io.table = whole(table_);
+    io.probe = whole(probe_);
+    io.constants = {constants_.buffer, 0, constants_.size};
+    program_.emplace(context_, spec, transform.subgroups(), &io);
 
-    EvolveHeader evolve;
-    evolve.dkx = tables.dkx;
-    evolve.dky = tables.dky;
-    evolve.nx = nx_;
-    evolve.ny = ny_;
-    evolve.half_columns = half_columns_;
-    evolve.spectrum_columns = spectrum_columns_;
-    evolve.plane_stride = spectra.stride;
-    evolve_push_.resize(sizeof evolve + kRealFields * real_);
-    std::memcpy(evolve_push_.data(), &evolve, sizeof evolve);
-    std::memcpy(evolve_push_.data() + sizeof evolve, tables.field_scale, kRealFields * real_);
-    UnpackHeader unpack;
-    unpack.count = std::uint32_t(count);
-    unpack.input_stride = inputs.stride;
-    unpack.field_stride = outputs.stride;
-    unpack_push_.resize(sizeof unpack + kRealFields * real_);
-    std::memcpy(unpack_push_.data(), &unpack, sizeof unpack);
-    std::memcpy(unpack_push_.data() + sizeof unpack, tables.inverse_scale, kRealFields * real_);
-
-    const std::vector<std::uint32_t> specialization = {kLocalSize, pairs_ ? 1u : 0u};
     const bool f64 = precision_ == Precision::f64;
+    PipelineShape shape;
+    shape.bindings.resize(3);  // the waves, ω, the table
+    shape.push_bytes = sizeof(double);  // t
     evolve_ = &context_->pipeline(f64 ? "frame_evolve_fp64" : "frame_evolve_fp32",
-                                  frame_evolve_spirv(precision_), specialization, kEvolveBuffers,
-                                  0, std::uint32_t(evolve_push_.size()));
-    unpack_ = &context_->pipeline(f64 ? "frame_unpack_fp64" : "frame_unpack_fp32",
-                                  frame_unpack_spirv(precision_), specialization, kUnpackBuffers,
-                                  0, std::uint32_t(unpack_push_.size()));
-    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kEvolveBuffers + kUnpackBuffers};
+                                  frame_evolve_spirv(precision_), {kLocalSize}, shape);
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3};
     VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    pool_info.maxSets = 2;
+    pool_info.maxSets = 1;
     pool_info.poolSizeCount = 1;
     pool_info.pPoolSizes = &size;
     check(vkCreateDescriptorPool(context_->device(), &pool_info, nullptr, &pool_), "vkCreateDescriptorPool");
-    const VkDescriptorSetLayout layouts[2] = {evolve_->set_layout, unpack_->set_layout};
     VkDescriptorSetAllocateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     set_info.descriptorPool = pool_;
-    set_info.descriptorSetCount = 2;
-    set_info.pSetLayouts = layouts;
-    VkDescriptorSet sets[2];
-    check(vkAllocateDescriptorSets(context_->device(), &set_info, sets), "vkAllocateDescriptorSets");
-    evolve_set_ = sets[0];
-    unpack_set_ = sets[1];
-    std::vector<VkDescriptorBufferInfo> infos;
-    infos.reserve(evolve_windows.size() + unpack_windows.size());
-    std::vector<VkWriteDescriptorSet> writes;
-    const auto bind = [&](VkDescriptorSet set, const std::vector<Window>& windows) {
-      for (std::uint32_t b = 0; b < windows.size(); ++b) {
-        infos.push_back({windows[b].buffer, windows[b].offset, windows[b].range});
-        VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        write.dstSet = set;
-        write.dstBinding = b;
-        write.descriptorCount = 1;
-        write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        write.pBufferInfo = &infos.back();
-        writes.push_back(write);
-      }
-    };
-    bind(evolve_set_, evolve_windows);
-    bind(unpack_set_, unpack_windows);
-    vkUpdateDescriptorSets(context_->device(), std::uint32_t(writes.size()), writes.data(), 0, nullptr);
-    workspace_ = transform_.acquire();
+    set_info.descriptorSetCount = 1;
+    set_info.pSetLayouts = &evolve_->set_layout;
+    check(vkAllocateDescriptorSets(context_->device(), &set_info, &evolve_set_), "vkAllocateDescriptorSets");
+    const Window windows[3] = {whole(waves_), whole(omega_), whole(table_)};
+    VkDescriptorBufferInfo infos[3];
+    VkWriteDescriptorSet writes[3];
+    for (std::uint32_t b = 0; b < 3; ++b) {
+      infos[b] = {windows[b].buffer, windows[b].offset, windows[b].range};
+      writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+      writes[b].dstSet = evolve_set_;
+      writes[b].dstBinding = b;
+      writes[b].descriptorCount = 1;
+      writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+      writes[b].pBufferInfo = &infos[b];
+    }
+    vkUpdateDescriptorSets(context_->device(), 3, writes, 0, nullptr);
+    workspace_ = program_->acquire();
   } catch (...) {
     release();  // what was made so far; every handle starts null
     throw;
@@ -332,57 +283,60 @@ FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProg
 
 FrameProgram::~FrameProgram() { release(); }
 
+template <typename Real>
+void FrameProgram::split_pairs(const std::byte* pairs, std::byte* fields) const {
+  const std::size_t count = std::size_t(nx_) * ny_;
+  if (reinterpret_cast<std::uintptr_t>(fields) % alignof(Real) != 0) {
+    // The caller's bytes need not be aligned for Real: then the values go through memcpy.
+    for (std::size_t p = 0; p < kFields / 2; ++p) {
+      const std::byte* in = pairs + 2 * p * count * sizeof(Real);
+      std::byte* first = fields + 2 * p * count * sizeof(Real);
+      for (std::size_t s = 0; s < count; ++s) {
+        std::memcpy(first + s * sizeof(Real), in + 2 * s * sizeof(Real), sizeof(Real));
+        std::memcpy(first + (count + s) * sizeof(Real), in + (2 * s + 1) * sizeof(Real), sizeof(Real));
+      }
+    }
+    return;
+  }
+  for (std::size_t p = 0; p < kFields / 2; ++p) {
+    const Real* __restrict in = reinterpret_cast<const Real*>(pairs) + 2 * p * count;
+    Real* __restrict first = reinterpret_cast<Real*>(fields) + 2 * p * count;
+    Real* __restrict second = first + count;
+    for (std::size_t s = 0; s < count; ++s) {
+      first[s] = in[2 * s];
+      second[s] = in[2 * s + 1];
+    }
+  }
+}
+
 void FrameProgram::release() {
-  if (workspace_) transform_.release(workspace_);
+  if (workspace_) program_->release(workspace_);
   workspace_ = nullptr;
+  program_.reset();
   if (pool_) vkDestroyDescriptorPool(context_->device(), pool_, nullptr);
   pool_ = VK_NULL_HANDLE;
-  for (Allocation* a : {&waves_, &lambda_over_k_, &omega_, &spectra_, &transformed_storage_,
-                        &fields_, &probe_, &staging_}) {
+  for (Allocation* a : {&waves_, &omega_, &table_, &planes_, &fields_, &probe_, &constants_, &staging_}) {
     if (a->buffer) context_->free(*a);
   }
 }
 
-// `invocations` one-dimensional invocations, as workgroups along x, and along y beyond
-// maxComputeWorkGroupCount[0] (the kernels count x fastest, then y).
-void FrameProgram::dispatch(VkCommandBuffer commands, std::uint64_t invocations) const {
-  const auto& limits = context_->limits();
-  const std::uint64_t groups = (invocations + kLocalSize - 1) / kLocalSize;
-  const std::uint64_t x = std::min<std::uint64_t>(groups, limits.maxComputeWorkGroupCount[0]);
-  const std::uint64_t y = (groups + x - 1) / x;
-  if (y > limits.maxComputeWorkGroupCount[1]) {
-    refuse(fmt::format("{} workgroups exceed the device's maxComputeWorkGroupCount {}×{}", groups,
-                       limits.maxComputeWorkGroupCount[0], limits.maxComputeWorkGroupCount[1]));
-  }
-  vkCmdDispatch(commands, std::uint32_t(x), std::uint32_t(y), 1);
-}
-
 void FrameProgram::record_frame(VkCommandBuffer commands, double t, VkQueryPool stamps) const {
   // After whatever the queue ran before (the previous frame read these buffers): a barrier,
-  // then the probe's count back to 0. The evolution does not touch the probe; the barriers
-  // FftProgram::record puts before its passes order the fill before the unpack.
+  // then the probe's count back to 0. The evolution does not touch the probe; the barrier the
+  // program puts before its first pass orders the fill before the last pass's counts.
   Context::barrier(commands);
   vkCmdFillBuffer(commands, probe_.buffer, 0, VK_WHOLE_SIZE, 0);
-  std::vector<std::byte> push = evolve_push_;
-  std::memcpy(push.data() + offsetof(EvolveHeader, t), &t, sizeof t);
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, evolve_->pipeline);
   vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, evolve_->layout, 0, 1,
                           &evolve_set_, 0, nullptr);
-  vkCmdPushConstants(commands, evolve_->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                     std::uint32_t(push.size()), push.data());
-  dispatch(commands, std::uint64_t(half_columns_) * ny_);
+  vkCmdPushConstants(commands, evolve_->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof t, &t);
+  vkCmdDispatch(commands, evolve_groups_x_, evolve_groups_y_, 1);
   if (stamps) vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, stamps, 1);
   // A barrier before each pass (the evolution's writes before the first) and after the last.
-  transform_.record(commands, *workspace_, spectra_.buffer, transformed().buffer);
+  // The table stands for the program's input (its first pass reads the table); its output is
+  // where the fields are.
+  program_->record(commands, *workspace_, table_.buffer, field_memory().buffer);
   if (stamps) vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, stamps, 2);
-  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, unpack_->pipeline);
-  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, unpack_->layout, 0, 1,
-                          &unpack_set_, 0, nullptr);
-  vkCmdPushConstants(commands, unpack_->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                     std::uint32_t(unpack_push_.size()), unpack_push_.data());
-  // fp32: two samples per invocation.
-  const std::uint64_t samples = std::uint64_t(nx_) * ny_;
-  dispatch(commands, precision_ == Precision::f32 ? samples / 2 : samples);
 }
 
 void stamp(const Slot& slot, std::uint32_t query) {
@@ -410,28 +364,33 @@ std::size_t FrameProgram::evaluate(double t, std::span<std::byte> fields,
   check(vkBeginCommandBuffer(slot.commands, &begin), "vkBeginCommandBuffer");
   if (slot.timestamps) vkCmdResetQueryPool(slot.commands, slot.timestamps, 0, kTimestamps);
   stamp(slot, 0);
-  record_frame(slot.commands, t, slot.timestamps);
+  record_frame(slot.commands, t, slot.timestamps);  // ends with a barrier
+  // Where the fields or the probe are not host-readable, a copy to the staging buffer.
+  if (!field_memory().mapped) {
+    const VkBufferCopy frame{0, 0, fields_bytes_};
+    vkCmdCopyBuffer(slot.commands, field_memory().buffer, staging_.buffer, 1, &frame);
+  }
+  if (!probe_.mapped) {
+    const VkBufferCopy probe{0, fields_bytes_, sizeof(std::uint32_t)};
+    vkCmdCopyBuffer(slot.commands, probe_.buffer, staging_.buffer, 1, &probe);
+  }
+  Context::host_barrier(slot.commands);
   stamp(slot, 3);
-  Context::barrier(slot.commands);  // the unpack's writes before the copies read them
-  const VkBufferCopy frame{0, 0, fields_bytes_};
-  vkCmdCopyBuffer(slot.commands, fields_.buffer, staging_.buffer, 1, &frame);
-  const VkBufferCopy probe{0, fields_bytes_, sizeof(std::uint32_t)};
-  vkCmdCopyBuffer(slot.commands, probe_.buffer, staging_.buffer, 1, &probe);
-  VkMemoryBarrier host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  vkCmdPipelineBarrier(slot.commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-                       0, 1, &host, 0, nullptr, 0, nullptr);
   check(vkEndCommandBuffer(slot.commands), "vkEndCommandBuffer");
   context_->submit_and_wait(slot);
   const auto* staged = static_cast<const std::byte*>(staging_.mapped);
-  std::memcpy(fields.data(), staged, fields_bytes_);
+  const std::byte* device = field_memory().mapped ? static_cast<const std::byte*>(field_memory().mapped) : staged;
+  if (pairs_) {
+    if (precision_ == Precision::f32) split_pairs<float>(device, fields.data()); else split_pairs<double>(device, fields.data());
+  } else {
+    std::memcpy(fields.data(), device, fields_bytes_);
+  }
   std::uint32_t non_finite = 0;
-  std::memcpy(&non_finite, staged + fields_bytes_, sizeof non_finite);
+  std::memcpy(&non_finite, probe_.mapped ? probe_.mapped : staged + fields_bytes_, sizeof non_finite);
   const auto seconds = context_->timestamp_seconds(slot);
-  timings.device_seconds = seconds[3] - seconds[0];
+  timings.device_seconds = seconds[2] - seconds[0];
   timings.evolve_seconds = seconds[1] - seconds[0];
-  timings.unpack_seconds = seconds[3] - seconds[2];
+  timings.transforms_seconds = seconds[2] - seconds[1];
   return non_finite;
 }
 

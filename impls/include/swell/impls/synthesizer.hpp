@@ -35,13 +35,15 @@ Packing packing_from_string(const std::string& name);
 // in double precision; 0 where the grid carries no energy.
 std::complex<double> initial_amplitude(const reference::OceanCase& ocean_case, int n, int m);
 
-// Where one frame's time went, by the device's own clock: the evolution, the transforms and
-// the unpack together (device_seconds, before the fields' download), and the evolution and
-// the unpack alone. Zeros for host backends, and on a device without timestamps.
+// Where one frame's time went, by the device's own clock: the evolution and the transforms
+// together (device_seconds, before the fields reach the host), the evolution kernel alone
+// (h̃ at t), and the transforms' passes alone, whose first makes the packed spectra and whose
+// last writes the six fields (docs/synthesis.md §vulkan). Zeros for host backends, and on a
+// device without timestamps.
 struct FrameTimings {
   double device_seconds = 0;
   double evolve_seconds = 0;
-  double unpack_seconds = 0;
+  double transforms_seconds = 0;
 };
 
 struct SynthesizerOptions {
