@@ -44,9 +44,9 @@ constexpr int kFields = 6;      // reference::kAllFields
 // costs little.
 constexpr std::uint32_t kLocalSize = 128;
 
-// frame_evolve.comp takes two entries an invocation, and the tables are padded to whole
+// frame_evolve.comp takes four entries an invocation, and the tables are padded to whole
 // workgroups of it.
-constexpr std::uint32_t kEntriesPerGroup = 2 * kLocalSize;
+constexpr std::uint32_t kEntriesPerGroup = 4 * kLocalSize;
 
 class FrameProgram final : public DeviceFrame {
  public:
