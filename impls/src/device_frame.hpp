@@ -41,10 +41,11 @@ class DeviceFrame {
 };
 
 #ifdef SWELL_HAVE_VULKAN
-// The frame of a vulkan backend and its plan (the synthesizer's batch of inverse transforms).
-// Throws UnsupportedTransform naming the device and the missing feature, InvalidInput when
-// `backend` or `plan` is not of the vulkan backend. (vulkan/frame.cpp)
-std::unique_ptr<DeviceFrame> make_vulkan_frame(const Backend& backend, const Plan& plan,
+// The frame of a vulkan backend for `spec`, the synthesizer's batch of inverse transforms (which
+// the backend's rules must allow: it is validated as a plan is). Throws UnsupportedTransform
+// naming the device and the missing feature, InvalidInput when `backend` is not vulkan.
+// (vulkan/frame.cpp)
+std::unique_ptr<DeviceFrame> make_vulkan_frame(const Backend& backend, const TransformSpec& spec,
                                                const DeviceFrameTables& tables);
 #endif
 

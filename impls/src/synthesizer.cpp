@@ -345,7 +345,8 @@ struct Synthesizer::State {
   SynthesizerOptions options;
   Packing packing = Packing::complex_pairs;
   std::unique_ptr<Backend> backend;
-  std::unique_ptr<Plan> plan;
+  TransformSpec spec;          // the batch of inverse transforms of a frame
+  std::unique_ptr<Plan> plan;  // its plan (host backends; a device frame builds its own program)
   int nx = 0, ny = 0;
   int half_columns = 0;       // nx/2 + 1: the half spectrum the waves are stored for
   int spectrum_columns = 0;   // of the spectra the transforms take: nx (c2c) or nx/2 + 1 (c2r)
@@ -369,7 +370,7 @@ struct Synthesizer::State {
   // backend transforms in place). Host backends only.
   std::unique_ptr<Buffer> spectra, transformed_storage;
   // A device-resident backend's frame (device_frame.hpp), which holds the waves on the device
-  // and records `plan` into its own submission; declared after `plan`, so destroyed before it.
+  // and records the transforms of `spec` into its own submission.
   std::unique_ptr<DeviceFrame> device_frame;
   Buffer& transformed() const { return transformed_storage ? *transformed_storage : *spectra; }
 
@@ -442,9 +443,13 @@ Synthesizer::Synthesizer(OceanCase ocean_case, SynthesizerOptions options)
     spec.howmany = kRealFields;
     s.spectrum_columns = s.half_columns;
   }
-  s.plan = s.backend->plan(spec);
+  s.spec = spec;
   const bool on_device = s.backend->capabilities().device_resident;
+  // The backend's rules before the waves are computed (seconds for a large grid): a device
+  // frame builds its program after them.
+  s.backend->validate(spec);
   if (!on_device) {
+    s.plan = s.backend->plan(spec);
     s.spectra = s.backend->allocate(spec.input_bytes());
     if (spec.placement == Placement::out_of_place) {
       s.transformed_storage = s.backend->allocate(spec.output_bytes());
@@ -484,7 +489,7 @@ void Synthesizer::State::make_device_frame() {
   tables.dky = ocean_case.grid.dky();
   tables.field_scale = scales<Real>(false);
   tables.inverse_scale = scales<Real>(true);
-  device_frame = make_vulkan_frame(*backend, *plan, tables);
+  device_frame = make_vulkan_frame(*backend, spec, tables);
   if constexpr (std::is_same_v<Real, float>) waves32 = {}; else waves64 = {};
   std::vector<double>().swap(omega);
 #else
@@ -582,7 +587,7 @@ const SynthesizerOptions& Synthesizer::options() const { return state_->options;
 Packing Synthesizer::packing() const { return state_->packing; }
 
 std::vector<TransformSpec> Synthesizer::transforms_per_frame() const {
-  return {state_->plan->spec()};
+  return {state_->spec};
 }
 
 std::uint64_t Synthesizer::bytes_needed(const reference::Grid& grid, Precision precision) {

@@ -719,6 +719,7 @@ class VulkanBackend final : public Backend {
   }
   const Context& context() const { return *context_; }
   const std::shared_ptr<const Context>& shared_context() const { return context_; }
+  bool subgroups() const { return subgroups_; }
 
  private:
   std::shared_ptr<const Context> context_;
@@ -733,14 +734,14 @@ const VulkanPlan& vulkan_plan(const Plan& plan) {
 
 }  // namespace
 
-const FftProgram* program_of(const Plan& plan) {
-  const auto* p = dynamic_cast<const VulkanPlan*>(&plan);
-  return p ? &p->program() : nullptr;
-}
-
 std::shared_ptr<const Context> context_of(const Backend& backend) {
   const auto* b = dynamic_cast<const VulkanBackend*>(&backend);
   return b ? b->shared_context() : nullptr;
+}
+
+bool subgroups_of(const Backend& backend) {
+  const auto* b = dynamic_cast<const VulkanBackend*>(&backend);
+  return b && b->subgroups();
 }
 
 }  // namespace swell::impls::vk

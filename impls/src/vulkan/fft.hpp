@@ -113,9 +113,9 @@ class FftProgram {
   mutable std::vector<Workspace*> free_workspaces_;
 };
 
-// The program of a plan of the vulkan backend, and a vulkan backend's context (nullptr for
-// another backend's): for the synthesizer, which records the plan into its own frame submission.
-const FftProgram* program_of(const Plan& plan);
+// A vulkan backend's context (nullptr for another backend's) and its subgroups option: for the
+// synthesizer's frame, which builds its own program.
 std::shared_ptr<const Context> context_of(const Backend& backend);
+bool subgroups_of(const Backend& backend);
 
 }  // namespace swell::impls::vk

@@ -50,7 +50,7 @@ constexpr std::uint32_t kEntriesPerGroup = 4 * kLocalSize;
 
 class FrameProgram final : public DeviceFrame {
  public:
-  FrameProgram(std::shared_ptr<const Context> context, const FftProgram& transform,
+  FrameProgram(std::shared_ptr<const Context> context, const TransformSpec& spec, bool subgroups,
                const DeviceFrameTables& tables);
   ~FrameProgram() override;
   FrameProgram(const FrameProgram&) = delete;
@@ -112,8 +112,8 @@ Window FrameProgram::whole(const Allocation& allocation) const {
   return {allocation.buffer, 0, allocation.size};
 }
 
-FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProgram& transform,
-                           const DeviceFrameTables& tables)
+FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const TransformSpec& spec,
+                           bool subgroups, const DeviceFrameTables& tables)
     : context_(std::move(context)),
       precision_(tables.precision),
       pairs_(tables.pairs),
@@ -151,7 +151,6 @@ FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProg
     refuse("the frame's last pass picks its fields from an array of storage buffers by plane, "
            "which needs shaderStorageBufferArrayDynamicIndexing, and this device does not offer it");
   }
-  const TransformSpec& spec = transform.spec();
   const bool expected = spec.nx == tables.nx && spec.ny == tables.ny &&
                         spec.precision == precision_ && spec.direction == Direction::inverse &&
                         (pairs_ ? spec.kind == Kind::c2c && spec.howmany == 4 &&
@@ -242,7 +241,7 @@ FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const FftProg
     io.table = whole(table_);
     io.probe = whole(probe_);
     io.constants = {constants_.buffer, 0, constants_.size};
-    program_.emplace(context_, spec, transform.subgroups(), &io);
+    program_.emplace(context_, spec, subgroups, &io);
 
     const bool f64 = precision_ == Precision::f64;
     PipelineShape shape;
@@ -362,7 +361,7 @@ std::size_t FrameProgram::evaluate(double t, std::span<std::byte> fields,
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   check(vkBeginCommandBuffer(slot.commands, &begin), "vkBeginCommandBuffer");
-  if (slot.timestamps) vkCmdResetQueryPool(slot.commands, slot.timestamps, 0, kTimestamps);
+  if (slot.timestamps) vkCmdResetQueryPool(slot.commands, slot.timestamps, 0, 3);
   stamp(slot, 0);
   record_frame(slot.commands, t, slot.timestamps);  // ends with a barrier
   // Where the fields or the probe are not host-readable, a copy to the staging buffer.
@@ -375,7 +374,6 @@ std::size_t FrameProgram::evaluate(double t, std::span<std::byte> fields,
     vkCmdCopyBuffer(slot.commands, probe_.buffer, staging_.buffer, 1, &probe);
   }
   Context::host_barrier(slot.commands);
-  stamp(slot, 3);
   check(vkEndCommandBuffer(slot.commands), "vkEndCommandBuffer");
   context_->submit_and_wait(slot);
   const auto* staged = static_cast<const std::byte*>(staging_.mapped);
@@ -387,7 +385,7 @@ std::size_t FrameProgram::evaluate(double t, std::span<std::byte> fields,
   }
   std::uint32_t non_finite = 0;
   std::memcpy(&non_finite, probe_.mapped ? probe_.mapped : staged + fields_bytes_, sizeof non_finite);
-  const auto seconds = context_->timestamp_seconds(slot);
+  const auto seconds = context_->timestamp_seconds(slot, 3);
   timings.device_seconds = seconds[2] - seconds[0];
   timings.evolve_seconds = seconds[1] - seconds[0];
   timings.transforms_seconds = seconds[2] - seconds[1];
@@ -400,15 +398,14 @@ std::size_t FrameProgram::evaluate(double t, std::span<std::byte> fields,
 
 namespace swell::impls {
 
-std::unique_ptr<DeviceFrame> make_vulkan_frame(const Backend& backend, const Plan& plan,
+std::unique_ptr<DeviceFrame> make_vulkan_frame(const Backend& backend, const TransformSpec& spec,
                                                const DeviceFrameTables& tables) {
   auto context = vk::context_of(backend);
-  const vk::FftProgram* program = vk::program_of(plan);
-  if (!context || !program) {
-    throw InvalidInput("the vulkan frame needs a vulkan backend and one of its plans, not " +
-                       backend.name());
+  if (!context) {
+    throw InvalidInput("the vulkan frame needs a vulkan backend, not " + backend.name());
   }
-  return std::make_unique<vk::FrameProgram>(std::move(context), *program, tables);
+  backend.validate(spec);
+  return std::make_unique<vk::FrameProgram>(std::move(context), spec, vk::subgroups_of(backend), tables);
 }
 
 }  // namespace swell::impls
