@@ -5,16 +5,17 @@
 //   evolution (impls/shaders/frame_evolve.comp)    h̃(k, t) of the half spectrum, one phase a wave
 //   the frame program (FftProgram with FrameIo)    the batch of inverse transforms, whose first
 //                                                  pass makes the packed spectra from h̃ and whose
-//                                                  last pass writes the six fields and counts
-//                                                  non-finite values (fft_lines.comp, SWELL_FRAME)
+//                                                  last pass leaves the six fields in its
+//                                                  destination and counts non-finite values
+//                                                  (fft_lines.comp, SWELL_FRAME)
 //   the fields to the host                         read where they are when the device's memory
 //                                                  is host-readable (lavapipe, integrated GPUs),
 //                                                  else copied through a staging buffer
 //
 // On lavapipe a frame costs what its storage-buffer accesses cost (docs/vulkan.md §Kernels):
 // a kernel that wrote the eight packed spectra and one that read the transforms back to make
-// the fields cost 1.4–1.8× the transforms themselves; fused into the passes, the frame reads
-// and writes little more than the bare transforms do.
+// the fields cost 1.4–1.6× the transforms themselves; fused into the passes, the frame reads
+// and writes little more than the bare transforms do (1.1–1.3× from 512², docs/synthesis.md).
 //
 // record_frame() records the first two alone and leaves the fields in device memory: a
 // device-only evaluation (a renderer that samples the fields where they are) is that call into
@@ -60,7 +61,7 @@ class FrameProgram final : public DeviceFrame {
 
  private:
   // Records the frame at t — evolution, then the frame program — into `commands`, leaving the
-  // six fields in fields_ and the count of non-finite values in probe_, with a barrier after
+  // six fields in field_memory() and the count of non-finite values in probe_, with a barrier after
   // the last pass. With `stamps`, timestamp 1 of that pool is written after the evolution and
   // timestamp 2 after the last pass. The caller holds mutex_ until the submission has
   // completed: the buffers and the program's workspace are this frame's alone.
@@ -83,10 +84,10 @@ class FrameProgram final : public DeviceFrame {
   std::uint32_t evolve_groups_x_ = 0, evolve_groups_y_ = 0;
   std::size_t real_;
   VkDeviceSize fields_bytes_ = 0;    // the six fields the caller gets
-  // Device memory: the waves and ω (written once), the evolution's table (h̃ each frame, λ/|k|
-  // once), the packed spectra (pairs: the in-place c2c batch), the fields (and a scratch plane
-  // for the c2r packing), the probe, the frame's constants (host-visible uniform), and staging
-  // where the fields or the probe are not host-readable.
+  // Device memory: the waves and ω (written once), the evolution's table (h̃, each frame), the
+  // packed spectra (pairs: the in-place c2c batch, where the fields end), the c2r packing's
+  // output (the fields, then two scratch planes), the probe, the frame's constants
+  // (host-visible uniform), and staging where the fields or the probe are not host-readable.
   Allocation waves_, omega_, table_, planes_, fields_, probe_, constants_, staging_;
   std::optional<FftProgram> program_;
   const Pipeline* evolve_ = nullptr;
@@ -158,7 +159,7 @@ FrameProgram::FrameProgram(std::shared_ptr<const Context> context, const Transfo
                                 : spec.kind == Kind::c2r && spec.howmany == kRealFields &&
                                       spec.placement == Placement::out_of_place);
   if (!expected) {
-    throw InternalError("vulkan frame: the plan " + spec.describe() +
+    throw InternalError("vulkan frame: the transform " + spec.describe() +
                         " is not the synthesizer's batch of inverse transforms");
   }
 
