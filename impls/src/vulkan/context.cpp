@@ -250,7 +250,6 @@ void Context::open(int requested) {
   VkPhysicalDeviceFeatures supported{};
   vkGetPhysicalDeviceFeatures(physical_, &supported);
   float64_ = supported.shaderFloat64 == VK_TRUE;
-  storage_array_indexing_ = supported.shaderStorageBufferArrayDynamicIndexing == VK_TRUE;
   // Subgroup shuffles with full subgroups (Vulkan 1.3) for fft_lines_shuffle.
   VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
   if (properties_.apiVersion >= VK_API_VERSION_1_3 && app.apiVersion >= VK_API_VERSION_1_3) {
@@ -294,7 +293,6 @@ void Context::open(int requested) {
   queue_info.pQueuePriorities = &priority;
   VkPhysicalDeviceFeatures enabled{};
   enabled.shaderFloat64 = supported.shaderFloat64;
-  enabled.shaderStorageBufferArrayDynamicIndexing = supported.shaderStorageBufferArrayDynamicIndexing;
   VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   device_info.queueCreateInfoCount = 1;
   device_info.pQueueCreateInfos = &queue_info;
@@ -508,8 +506,8 @@ const Pipeline& Context::pipeline(const std::string& module_name,
   std::vector<VkDescriptorSetLayoutBinding> bindings(shape.bindings.size());
   for (std::uint32_t b = 0; b < bindings.size(); ++b) {
     bindings[b].binding = b;
-    bindings[b].descriptorType = shape.bindings[b].type;
-    bindings[b].descriptorCount = shape.bindings[b].count;
+    bindings[b].descriptorType = shape.bindings[b];
+    bindings[b].descriptorCount = 1;
     bindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
   }
   VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};

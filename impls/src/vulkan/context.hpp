@@ -48,14 +48,10 @@ struct Window {
   VkDeviceSize offset = 0, range = 0;
 };
 
-// What a pipeline's layout holds: set 0's bindings 0, 1, … (each a descriptor type and how many
-// descriptors), and `push_bytes` bytes of push constants.
+// What a pipeline's layout holds: set 0's bindings 0, 1, … (one descriptor each, of these
+// types), and `push_bytes` bytes of push constants.
 struct PipelineShape {
-  struct Binding {
-    VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    std::uint32_t count = 1;
-  };
-  std::vector<Binding> bindings;
+  std::vector<VkDescriptorType> bindings;
   std::uint32_t push_bytes = 0;
   bool full_subgroups = false;  // VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT
   bool dispatch_base = false;   // dispatched with a base workgroup (vkCmdDispatchBase)
@@ -83,8 +79,6 @@ class Context {
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
   bool float64() const { return float64_; }
-  // shaderStorageBufferArrayDynamicIndexing (enabled where offered).
-  bool storage_array_indexing() const { return storage_array_indexing_; }
   // The subgroup size when compute shaders may shuffle within subgroups and require them full
   // (subgroup shuffles in compute, Vulkan 1.3's computeFullSubgroups, a power of two ≥ 8);
   // 0 otherwise. Pipelines that require full subgroups need a workgroup width that is a
@@ -147,7 +141,6 @@ class Context {
   VkPhysicalDeviceProperties properties_{};
   VkPhysicalDeviceMemoryProperties memory_{};
   bool float64_ = false;
-  bool storage_array_indexing_ = false;
   std::uint32_t shuffle_subgroup_size_ = 0, max_subgroup_size_ = 0;
   int index_ = 0;
   std::string description_;

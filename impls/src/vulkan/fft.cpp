@@ -31,13 +31,11 @@ constexpr std::size_t kInBatchConstant = 9, kFlagsConstant = 16, kJacobianFirstC
 // frame's constants (uniform).
 PipelineShape line_shape(bool shuffle, bool frame) {
   PipelineShape shape;
-  shape.bindings = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC},
-                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC},
-                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+  shape.bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC,
+                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   if (frame) {
-    shape.bindings.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-    shape.bindings.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER});
+    shape.bindings.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    shape.bindings.push_back(VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     shape.dispatch_base = true;
   }
   shape.full_subgroups = shuffle;
@@ -413,10 +411,10 @@ Workspace* FftProgram::acquire() const {
   const std::uint32_t sets = std::uint32_t(passes_.size());
   std::vector<VkDescriptorPoolSize> sizes;
   for (const Pass& pass : passes_) {
-    for (const auto& binding : pass.pipeline->shape.bindings) {
-      auto same = std::find_if(sizes.begin(), sizes.end(), [&](const auto& s) { return s.type == binding.type; });
-      if (same == sizes.end()) sizes.push_back({binding.type, binding.count});
-      else same->descriptorCount += binding.count;
+    for (VkDescriptorType type : pass.pipeline->shape.bindings) {
+      auto same = std::find_if(sizes.begin(), sizes.end(), [&](const auto& s) { return s.type == type; });
+      if (same == sizes.end()) sizes.push_back({type, 1});
+      else ++same->descriptorCount;
     }
   }
   VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -487,17 +485,15 @@ void FftProgram::record(VkCommandBuffer commands, Workspace& w, VkBuffer in, VkB
       for (const Window& window : b) infos.push_back({window.buffer, window.offset, window.range});
     }
     std::vector<VkWriteDescriptorSet> writes;
-    std::size_t next = 0;
-    for (std::size_t p = 0; p < passes_.size(); ++p) {
+    for (std::size_t p = 0, next = 0; p < passes_.size(); ++p) {
       const PipelineShape& shape = passes_[p].pipeline->shape;
       for (std::uint32_t b = 0; b < shape.bindings.size(); ++b) {
         VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         write.dstSet = w.sets[p];
         write.dstBinding = b;
-        write.descriptorCount = shape.bindings[b].count;
-        write.descriptorType = shape.bindings[b].type;
-        write.pBufferInfo = &infos[next];
-        next += shape.bindings[b].count;
+        write.descriptorCount = 1;
+        write.descriptorType = shape.bindings[b];
+        write.pBufferInfo = &infos[next++];
         writes.push_back(write);
       }
     }
