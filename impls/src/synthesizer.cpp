@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -32,7 +33,9 @@ constexpr int kComplexPairs = kRealFields / 2;
 
 std::complex<double> amplitude(const reference::DirectionalSpectrum& spectrum,
                                const OceanCase& c, int n, int m) {
-  if (!c.grid.carries_energy(n, m)) return 0.0;
+  // A lattice's caller asks only for the k_m of classes that carry energy (and their −k_m,
+  // which are k_(N−m)); only k = 0 is empty by the rule itself.
+  if (c.is_lattice() ? (n == 0 && m == 0) : !c.grid.carries_energy(n, m)) return 0.0;
   const double dkx = c.grid.dkx(), dky = c.grid.dky();
   const double psi = spectrum.psi(n * dkx, m * dky);
   const auto xi = reference::wave_noise(c.seed, n, m);
@@ -143,6 +146,9 @@ struct RowTask {
   const Real* lambda_over_k = nullptr;  // [width]
   const Real* kx = nullptr;             // [nx]: kx of every column of a full row
   Real ky = 0, ky_mirror = 0;           // of row j and of row (ny − j) mod ny
+  // A lattice (one row of N classes, DESIGN.md §1 "Sampling"): ky of every class [nx], used
+  // instead of ky and ky_mirror; null on grids.
+  const Real* ky_column = nullptr;
   Real* out = nullptr;         // row j of the first spectrum (interleaved re, im)
   Real* out_mirror = nullptr;  // pairs: row (ny − j) mod ny of the first spectrum
   std::size_t plane = 0;       // Reals from one spectrum to the next
@@ -192,7 +198,9 @@ template <typename Real>
   }
 }
 
-template <typename Real>
+// PerColumnKy: a lattice's row, whose classes each have their own ky (a separate
+// instantiation, so that the grids' loops stay as they were).
+template <typename Real, bool PerColumnKy>
 [[gnu::always_inline]] inline void assemble_row_body(const RowTask<Real>& task) {
   const int width = task.width;
   double* __restrict c = task.cos_phase;
@@ -212,6 +220,7 @@ template <typename Real>
   Real* __restrict out = task.out;
   const std::size_t plane = task.plane;
   const Real ky = task.ky;
+  const Real* __restrict ky_column = task.ky_column;
   // h̃ = a e^(−iωt) + b e^(+iωt) (in Real: c and s are rounded once), then the fields at k:
   // columns 0 … nx/2 of row j.
   const auto wave = [&](int i, Real& hr, Real& hi) {
@@ -224,7 +233,8 @@ template <typename Real>
     for (int i = 0; i < width; ++i) {
       Real hr, hi;
       wave(i, hr, hi);
-      const auto f = field_spectra(hr, hi, kx[i], ky, lk[i], task.field_scale);
+      const auto f = field_spectra(hr, hi, kx[i], PerColumnKy ? ky_column[i] : ky, lk[i],
+                                   task.field_scale);
       for (int r = 0; r < kRealFields; ++r) {
         out[r * plane + 2 * i] = f.re[r];
         out[r * plane + 2 * i + 1] = f.im[r];
@@ -238,7 +248,9 @@ template <typename Real>
     wave(i, hr, hi);
     h_re[i] = hr;
     h_im[i] = hi;
-    store_pairs(field_spectra(hr, hi, kx[i], ky, lk[i], task.field_scale), out, plane, i);
+    store_pairs(field_spectra(hr, hi, kx[i], PerColumnKy ? ky_column[i] : ky, lk[i],
+                              task.field_scale),
+                out, plane, i);
   }
   // The columns nx/2 + 1 … nx − 1 of the mirror row hold −k of columns nx − 1 … 1 here:
   // h̃(−k) = conj(h̃(k)), and λ/|k| is the same.
@@ -248,14 +260,21 @@ template <typename Real>
 #pragma omp simd
   for (int i = width; i < nx; ++i) {
     const int source = nx - i;
-    const auto f = field_spectra(h_re[source], -h_im[source], kx[i], ky_mirror, lk[source],
+    const auto f = field_spectra(h_re[source], -h_im[source], kx[i],
+                                 PerColumnKy ? ky_column[i] : ky_mirror, lk[source],
                                  task.field_scale);
     store_pairs(f, mirror, plane, i);
   }
 }
 
-SWELL_SIMD_CLONES void assemble_row(const RowTask<float>& task) { assemble_row_body(task); }
-SWELL_SIMD_CLONES void assemble_row(const RowTask<double>& task) { assemble_row_body(task); }
+SWELL_SIMD_CLONES void assemble_row(const RowTask<float>& task) { assemble_row_body<float, false>(task); }
+SWELL_SIMD_CLONES void assemble_row(const RowTask<double>& task) { assemble_row_body<double, false>(task); }
+SWELL_SIMD_CLONES void assemble_lattice_row(const RowTask<float>& task) {
+  assemble_row_body<float, true>(task);
+}
+SWELL_SIMD_CLONES void assemble_lattice_row(const RowTask<double>& task) {
+  assemble_row_body<double, true>(task);
+}
 
 // From the transformed spectra (eight real fields) to the six outputs: copy five, and
 // J = (1 + λ∂Dx/∂x)(1 + λ∂Dy/∂y) − (λ∂Dx/∂y)², over samples [begin, end).
@@ -366,6 +385,11 @@ struct Synthesizer::State {
   Waves<double> waves64;      // fp64 synthesizers
   std::vector<float> kx32, ky32;  // per column of a full row (FFT order), per row
   std::vector<double> kx64, ky64;
+  // A lattice case is one row of N classes (nx = N, ny = 1), class m at column m with its own
+  // ky (ky_column, N entries; empty on grids): its frame is 1-D transforms of size N.
+  bool lattice = false;
+  std::vector<float> ky_column32;
+  std::vector<double> ky_column64;
   // The packed spectra, and the fields the transforms make of them (the same buffer when the
   // backend transforms in place). Host backends only.
   std::unique_ptr<Buffer> spectra, transformed_storage;
@@ -397,6 +421,23 @@ struct Synthesizer::State {
     if constexpr (std::is_same_v<Real, float>) return ky32; else return ky64;
   }
   template <typename Real>
+  const std::vector<Real>& ky_column() const {
+    if constexpr (std::is_same_v<Real, float>) return ky_column32; else return ky_column64;
+  }
+  // The signed wave index (n, m) of half-spectrum entry (i, j) and whether it carries energy.
+  std::array<int, 2> wave_index(int i, int j) const {
+    if (lattice) {
+      const auto k = ocean_case.lattice->wave_vector(i);
+      return {k[0], k[1]};
+    }
+    return {Grid::signed_index(i, nx), Grid::signed_index(j, ny)};
+  }
+  bool carries_energy(int i, int j) const {
+    if (lattice) return ocean_case.lattice->carries_energy(i);
+    const auto [n, m] = wave_index(i, j);
+    return ocean_case.grid.carries_energy(n, m);
+  }
+  template <typename Real>
   void fill_waves(Waves<Real>& waves);
   template <typename Real>
   void make_device_frame();
@@ -424,42 +465,70 @@ Synthesizer::Synthesizer(OceanCase ocean_case, SynthesizerOptions options)
     throw InvalidInput("backend " + s.backend->name() + " has no c2r transform; use packing complex_pairs");
   }
   const Grid& grid = s.ocean_case.grid;
-  s.nx = grid.nx;
-  s.ny = grid.ny;
-  s.half_columns = grid.nx / 2 + 1;
+  s.lattice = s.ocean_case.is_lattice();
+  if (s.lattice) {
+    const auto points = s.ocean_case.lattice->points();
+    if (points > std::numeric_limits<int>::max()) {
+      throw InvalidInput(fmt::format("a lattice of {} points is beyond the synthesizer's "
+                                     "transforms (at most 2^31 − 1 points)", points));
+    }
+    s.nx = static_cast<int>(points);
+    s.ny = 1;
+  } else {
+    s.nx = grid.nx;
+    s.ny = grid.ny;
+  }
+  s.half_columns = s.nx / 2 + 1;
 
   TransformSpec spec;
-  spec.nx = grid.nx;
-  spec.ny = grid.ny;
+  spec.nx = s.nx;
+  spec.ny = s.ny;
   spec.precision = s.options.precision;
   spec.direction = Direction::inverse;
   if (s.packing == Packing::complex_pairs) {
     spec.kind = Kind::c2c;
     spec.howmany = kComplexPairs;
     spec.placement = s.backend->capabilities().in_place ? Placement::in_place : Placement::out_of_place;
-    s.spectrum_columns = grid.nx;
+    s.spectrum_columns = s.nx;
   } else {
     spec.kind = Kind::c2r;
     spec.howmany = kRealFields;
     s.spectrum_columns = s.half_columns;
   }
   s.spec = spec;
-  const bool on_device = s.backend->capabilities().device_resident;
+  // A device backend's fused frame (device_frame.hpp) is built for grids; a lattice frame
+  // assembles on the host and runs the device's 1-D transforms through host memory.
+  const bool on_device = s.backend->capabilities().device_resident && !s.lattice;
   // The backend's rules before the waves are computed (seconds for a large grid): a device
   // frame builds its program after them.
   s.backend->validate(spec);
   if (!on_device) {
     s.plan = s.backend->plan(spec);
-    s.spectra = s.backend->allocate(spec.input_bytes());
-    if (spec.placement == Placement::out_of_place) {
-      s.transformed_storage = s.backend->allocate(spec.output_bytes());
+    if (s.backend->capabilities().device_resident) {
+      s.spectra = std::make_unique<HostBuffer>(spec.input_bytes());
+      s.transformed_storage = std::make_unique<HostBuffer>(spec.output_bytes());
+    } else {
+      s.spectra = s.backend->allocate(spec.input_bytes());
+      if (spec.placement == Placement::out_of_place) {
+        s.transformed_storage = s.backend->allocate(spec.output_bytes());
+      }
     }
   }
 
   s.kx64.resize(s.nx);
   s.ky64.resize(s.ny);
-  for (int i = 0; i < s.nx; ++i) s.kx64[i] = Grid::signed_index(i, s.nx) * grid.dkx();
-  for (int j = 0; j < s.ny; ++j) s.ky64[j] = Grid::signed_index(j, s.ny) * grid.dky();
+  if (s.lattice) {
+    s.ky_column64.resize(s.nx);
+    for (int i = 0; i < s.nx; ++i) {
+      const auto [n, m] = s.wave_index(i, 0);
+      s.kx64[i] = n * grid.dkx();
+      s.ky_column64[i] = m * grid.dky();
+    }
+    s.ky_column32.assign(s.ky_column64.begin(), s.ky_column64.end());
+  } else {
+    for (int i = 0; i < s.nx; ++i) s.kx64[i] = Grid::signed_index(i, s.nx) * grid.dkx();
+    for (int j = 0; j < s.ny; ++j) s.ky64[j] = Grid::signed_index(j, s.ny) * grid.dky();
+  }
   s.kx32.assign(s.kx64.begin(), s.kx64.end());
   s.ky32.assign(s.ky64.begin(), s.ky64.end());
   if (s.options.precision == Precision::f32) s.fill_waves(s.waves32); else s.fill_waves(s.waves64);
@@ -499,7 +568,6 @@ void Synthesizer::State::make_device_frame() {
 
 template <typename Real>
 void Synthesizer::State::fill_waves(Waves<Real>& waves) {
-  const Grid& grid = ocean_case.grid;
   const auto spectrum = ocean_case.directional_spectrum();
   const std::size_t entries = std::size_t(half_columns) * ny;
   waves.resize(entries);
@@ -507,12 +575,11 @@ void Synthesizer::State::fill_waves(Waves<Real>& waves) {
   const double lambda = ocean_case.choppiness;
 #pragma omp parallel for num_threads(options.threads) schedule(dynamic, 4)
   for (int j = 0; j < ny; ++j) {
-    const int m = Grid::signed_index(j, ny);
     for (int i = 0; i < half_columns; ++i) {
-      const int n = Grid::signed_index(i, nx);
+      const auto [n, m] = wave_index(i, j);
       const std::size_t e = std::size_t(j) * half_columns + i;
-      if (!grid.carries_energy(n, m)) continue;  // a = b = 0, and ω = 0 keeps the phase finite
-      const double k = std::hypot(kx64[i], ky64[j]);
+      if (!carries_energy(i, j)) continue;  // a = b = 0, and ω = 0 keeps the phase finite
+      const double k = std::hypot(kx64[i], lattice ? ky_column64[i] : ky64[j]);
       const auto a = amplitude(*spectrum, ocean_case, n, m);
       const auto b = std::conj(amplitude(*spectrum, ocean_case, -n, -m));
       waves.a_re[e] = Real(a.real());
@@ -529,8 +596,8 @@ void Synthesizer::State::fill_waves(Waves<Real>& waves) {
   // mirror too), from the waves' power and the fields' multipliers (field_spectra).
   std::array<double, kRealFields> variance{};
   for (int j = 0; j < ny; ++j) {
-    const double ky = ky64[j];
     for (int i = 0; i < half_columns; ++i) {
+      const double ky = lattice ? ky_column64[i] : ky64[j];
       const std::size_t e = std::size_t(j) * half_columns + i;
       const double power = double(waves.a_re[e]) * double(waves.a_re[e]) +
                            double(waves.a_im[e]) * double(waves.a_im[e]) +
@@ -570,9 +637,11 @@ std::string Synthesizer::State::describe_non_finite(double t,
       const double v = f32 ? double(reinterpret_cast<const float*>(fields.data())[at])
                            : reinterpret_cast<const double*>(fields.data())[at];
       if (std::isfinite(v)) continue;
-      return fmt::format("the synthesizer made {} = {} at (i, j) = ({}, {}), t = {:g} s, {} {}, "
+      return fmt::format("the synthesizer made {} = {} at {}, t = {:g} s, {} {}, "
                          "for the case {}; the frame is not written",
-                         reference::field_name(reference::kAllFields[f]), v, p % s.nx, p / s.nx,
+                         reference::field_name(reference::kAllFields[f]), v,
+                         s.lattice ? fmt::format("lattice point n = {}", p)
+                                   : fmt::format("(i, j) = ({}, {})", p % s.nx, p / s.nx),
                          t, s.backend->name(), to_string(s.options.precision),
                          s.ocean_case.describe());
     }
@@ -633,6 +702,7 @@ void Synthesizer::State::assemble(double t) const {
     task.h_re = h.data();
     task.h_im = h.data() + half_columns;
     task.field_scale = scales<Real>(false);
+    if (lattice) task.ky_column = ky_column<Real>().data();
 #pragma omp for schedule(static)
     for (int j = 0; j < ny; ++j) {
       const int mirror = (ny - j) % ny;
@@ -647,7 +717,8 @@ void Synthesizer::State::assemble(double t) const {
       task.ky_mirror = kys[mirror];
       task.out = out + 2 * std::size_t(j) * spectrum_columns;
       task.out_mirror = out + 2 * std::size_t(mirror) * spectrum_columns;
-      assemble_row(task);
+      // A lattice is one row: one thread assembles it (its N/2 + 1 phases).
+      if (lattice) assemble_lattice_row(task); else assemble_row(task);
     }
   }
 }
@@ -662,7 +733,7 @@ bool Synthesizer::State::unpack(std::byte* fields) const {
   task.fields = reinterpret_cast<Real*>(fields);
   task.inverse_scale = scales<Real>(true);
   // Blocks of whole rows, a few per thread.
-  const std::size_t block = std::size_t(nx) * std::max(1, 4096 / nx);
+  const std::size_t block = ny == 1 ? 4096 : std::size_t(nx) * std::max(1, 4096 / nx);
   const std::ptrdiff_t blocks = std::ptrdiff_t((count + block - 1) / block);
   double probe = 0;
 #pragma omp parallel for num_threads(options.threads) schedule(static) firstprivate(task) \
@@ -701,7 +772,11 @@ FrameTimings Synthesizer::evaluate_timed(double t, std::span<std::byte> fields) 
   }
   const bool f32 = s.options.precision == Precision::f32;
   if (f32) s.assemble<float>(t); else s.assemble<double>(t);
-  s.plan->execute(*s.spectra, s.transformed());
+  if (s.backend->capabilities().device_resident) {
+    s.plan->execute(s.spectra->host_data(), s.transformed().host_data());  // a lattice
+  } else {
+    s.plan->execute(*s.spectra, s.transformed());
+  }
   const bool finite = f32 ? s.unpack<float>(fields.data()) : s.unpack<double>(fields.data());
   if (!finite) throw InternalError(s.describe_non_finite(t, fields));
   return timings;
@@ -730,6 +805,7 @@ reference::FieldFrame Synthesizer::frame(double t) const {
 reference::FrameSequence Synthesizer::frames() const {
   reference::FrameSequence sequence;
   sequence.grid = state_->ocean_case.grid;
+  sequence.lattice = state_->ocean_case.lattice;
   sequence.unit_roundoff = state_->options.precision == Precision::f32 ? 0x1p-24 : 0x1p-53;
   for (int f = 0; f < state_->ocean_case.frames; ++f) {
     sequence.frames.push_back(frame(state_->ocean_case.time(f)));

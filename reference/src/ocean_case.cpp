@@ -48,8 +48,23 @@ DirectionalSpectrumPtr OceanCase::directional_spectrum() const {
                                 wind_dir_deg * 3.14159265358979323846 / 180.0);
 }
 
+void OceanCase::set_lattice(std::shared_ptr<const RankOneLattice> new_lattice) {
+  const Sampling checked(new_lattice);  // 2-D only
+  lattice = std::move(new_lattice);
+  grid = Grid{0, 0, checked.lx(), checked.ly()};
+}
+
 void OceanCase::validate() const {
-  (void)Grid::create(grid.nx, grid.ny, grid.lx, grid.ly);
+  if (lattice) {
+    const Sampling checked(lattice);  // 2-D only
+    if (grid.nx != 0 || grid.ny != 0 || grid.lx != checked.lx() || grid.ly != checked.ly()) {
+      throw InvalidInput(fmt::format(
+          "the case samples {} but its grid says {}×{} over {:g}×{:g} m (set_lattice keeps them "
+          "in step)", checked.describe(), grid.nx, grid.ny, grid.lx, grid.ly));
+    }
+  } else {
+    (void)Grid::create(grid.nx, grid.ny, grid.lx, grid.ly);
+  }
   require(frames >= 1, "frames", "≥ 1", frames);
   require(std::isfinite(t0), "t0", "finite (s)", t0);
   require(std::isfinite(dt) && dt >= 0, "dt", "finite and ≥ 0 (s)", dt);
@@ -72,7 +87,11 @@ std::string OceanCase::describe() const {
   };
   std::string out = params(spectrum);
   if (!spreading.model.empty()) out += " + " + params(spreading);
-  out += fmt::format(", {}×{} over {:g}×{:g} m", grid.nx, grid.ny, grid.lx, grid.ly);
+  if (lattice) {
+    out += ", " + lattice->describe();
+  } else {
+    out += fmt::format(", {}×{} over {:g}×{:g} m", grid.nx, grid.ny, grid.lx, grid.ly);
+  }
   if (std::isfinite(depth)) out += fmt::format(", depth {:g} m", depth);
   return out;
 }

@@ -62,6 +62,29 @@ std::string describe_grid(const Grid& g) {
                                       : fmt::format("{}×{} over {:g}×{:g} m", g.nx, g.ny, g.lx, g.ly);
 }
 
+// The same for any sampling: "512² over 200 m grid", "korobov N=4096 g=(1,1159) over 200×200 m".
+std::string describe_samples(const Sampling& sampling) {
+  return sampling.is_lattice() ? sampling.describe() : describe_grid(sampling.grid()) + " grid";
+}
+
+// The largest |k| that carries energy: a grid's corner below Nyquist; a lattice's longest k_m.
+double largest_energy_wavenumber(const Sampling& sampling) {
+  if (!sampling.is_lattice()) return largest_energy_wavenumber(sampling.grid());
+  double largest2 = 0;
+  for (std::size_t c = 0; c < sampling.size(); ++c) {
+    if (!sampling.carries_energy(c)) continue;
+    const auto [n, m] = sampling.wave_index(c);
+    const double kx = n * sampling.dkx(), ky = m * sampling.dky();
+    largest2 = std::max(largest2, kx * kx + ky * ky);
+  }
+  return std::sqrt(largest2);
+}
+
+// Where a case file sets the sample count, for the messages.
+const char* size_key(const Sampling& sampling) {
+  return sampling.is_lattice() ? "[sampling] points" : "[grid] n";
+}
+
 std::string human_bytes(double bytes) {
   const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
   int u = 0;
@@ -76,47 +99,43 @@ std::string human_bytes(double bytes) {
 
 SamplingSummary summarize_sampling(const OceanCase& ocean_case,
                                    const std::vector<double>* travelling) {
-  const Grid& g = ocean_case.grid;
+  const Sampling sampling = ocean_case.sampling();
   const auto spectrum = ocean_case.directional_spectrum();
   SamplingSummary out;
   out.m0 = spectral_moment(spectrum->omnidirectional(), 0);
-  const double dkx = g.dkx(), dky = g.dky();
+  const double dkx = sampling.dkx(), dky = sampling.dky();
   out.k_min = std::min(dkx, dky);
-  out.k_max = largest_energy_wavenumber(g);
+  out.k_max = largest_energy_wavenumber(sampling);
 
   double sx = 0, sy = 0, dx = 0, dy = 0, dxx = 0, dyy = 0, dxy = 0;
-  for (int j = 0; j < g.ny; ++j) {
-    const int m = Grid::signed_index(j, g.ny);
-    for (int i = 0; i < g.nx; ++i) {
-      const int n = Grid::signed_index(i, g.nx);
-      if (!g.carries_energy(n, m)) continue;
-      const double kx = n * dkx, ky = m * dky, k = std::hypot(kx, ky);
-      double power = 0;
-      if (travelling) {
-        power = 2 * (*travelling)[std::size_t(j) * g.nx + i];
-      } else {
-        const double psi = spectrum->psi(kx, ky);
-        if (psi == 0) continue;  // Δk² may overflow where Ψ vanishes (a 1e-300 m patch)
-        power = psi * dkx * dky;
-      }
-      if (power == 0) continue;
-      if (!std::isfinite(power) || power < 0) {
-        throw InvalidInput(fmt::format(
-            "the case's spectrum gives Ψ(k) Δkx Δky = {:g} m² at k = ({:g}, {:g}) rad/m of its "
-            "{} grid: the grid's wave vectors (Δk = 2π/L = {:g} rad/m) lie where the spectrum "
-            "cannot be evaluated; choose [grid] length so that Δk is a fraction of the peak wave "
-            "number",
-            power, kx, ky, describe_grid(g), out.k_min));
-      }
-      out.m0_on_grid += power;
-      sx += kx * kx * power;
-      sy += ky * ky * power;
-      dx += kx / k * (kx / k) * power;
-      dy += ky / k * (ky / k) * power;
-      dxx += (kx / k * kx) * (kx / k * kx) * power;
-      dyy += (ky / k * ky) * (ky / k * ky) * power;
-      dxy += (kx / k * ky) * (kx / k * ky) * power;
+  for (std::size_t c = 0; c < sampling.size(); ++c) {
+    if (!sampling.carries_energy(c)) continue;
+    const auto [n, m] = sampling.wave_index(c);
+    const double kx = n * dkx, ky = m * dky, k = std::hypot(kx, ky);
+    double power = 0;
+    if (travelling) {
+      power = 2 * (*travelling)[c];
+    } else {
+      const double psi = spectrum->psi(kx, ky);
+      if (psi == 0) continue;  // Δk² may overflow where Ψ vanishes (a 1e-300 m patch)
+      power = psi * dkx * dky;
     }
+    if (power == 0) continue;
+    if (!std::isfinite(power) || power < 0) {
+      throw InvalidInput(fmt::format(
+          "the case's spectrum gives Ψ(k) Δkx Δky = {:g} m² at k = ({:g}, {:g}) rad/m of its "
+          "{}: the wave vectors (Δk = 2π/L = {:g} rad/m) lie where the spectrum cannot be "
+          "evaluated; choose the patch length so that Δk is a fraction of the peak wave number",
+          power, kx, ky, describe_samples(sampling), out.k_min));
+    }
+    out.m0_on_grid += power;
+    sx += kx * kx * power;
+    sy += ky * ky * power;
+    dx += kx / k * (kx / k) * power;
+    dy += ky / k * (ky / k) * power;
+    dxx += (kx / k * kx) * (kx / k * kx) * power;
+    dyy += (ky / k * ky) * (ky / k * ky) * power;
+    dxy += (kx / k * ky) * (kx / k * ky) * power;
   }
   out.fraction = out.m0 > 0 ? out.m0_on_grid / out.m0 : 0;
   out.slope_variance = std::max(sx, sy);
@@ -148,13 +167,13 @@ void require_memory(std::uint64_t bytes_needed, std::string_view command, std::s
 void require_valid_sampling(const OceanCase& ocean_case, const NumberFormat& numbers,
                             std::uint64_t bytes_needed, std::string_view command,
                             const std::vector<double>* travelling) {
-  const Grid& g = ocean_case.grid;
-  if (bytes_needed > 0) require_memory(bytes_needed, command, "the " + describe_grid(g) + " grid");
+  const Sampling sampling = ocean_case.sampling();
+  if (bytes_needed > 0) require_memory(bytes_needed, command, "the " + describe_samples(sampling));
 
   // Times first: it needs no pass over the grid.
   {
     // The fastest wave the grid carries, as the synthesizer's own check sees it.
-    const double largest_k = largest_energy_wavenumber(g);
+    const double largest_k = largest_energy_wavenumber(sampling);
     const double omega_max = ocean_case.omega(largest_k);
     const double t_last = ocean_case.t0 + double(ocean_case.frames - 1) * ocean_case.dt;
     const double time_max = std::max(std::abs(ocean_case.t0), std::abs(t_last));
@@ -164,21 +183,22 @@ void require_valid_sampling(const OceanCase& ocean_case, const NumberFormat& num
           "[time] t0 = {:g} s, dt = {:g} s, frames = {}: frame times up to |t| = {:g} s make the "
           "fastest wave's phase ω t = {:.3g} rad (ω = {:.4g} rad/s at |k| = {:.4g} rad/m), "
           "beyond the {:.3g} rad ({}) that a phase can carry with every bit of a double "
-          "(reference/phase.hpp); frames must stay within |t| ≤ {:.4g} s on this grid",
+          "(reference/phase.hpp); frames must stay within |t| ≤ {:.4g} s on these samples",
           ocean_case.t0, ocean_case.dt, ocean_case.frames, time_max, phase,
           omega_max, largest_k, kLargestPhase, "2⁵⁰", kLargestPhase / omega_max));
     }
   }
 
-  if (travelling && travelling->size() != std::size_t(g.nx) * std::size_t(g.ny)) {
+  if (travelling && travelling->size() != sampling.size()) {
     throw InternalError("require_valid_sampling: travelling power of the wrong size");
   }
   const SamplingSummary s = summarize_sampling(ocean_case, travelling);
   if (s.k_max == 0) {
     throw InvalidInput(fmt::format(
-        "the {} grid has no wave vector that carries energy (only k = 0 and the Nyquist row and "
-        "column, which carry none): [grid] n must be at least 3 along one axis",
-        describe_grid(g)));
+        "the {} has no wave vector that carries energy (only k = 0 and the self-conjugate "
+        "Nyquist entries, which carry none): {} must be at least 3{}",
+        describe_samples(sampling), size_key(sampling),
+        sampling.is_lattice() ? "" : " along one axis"));
   }
   if (!(s.fraction >= kSmallestEnergyFraction)) {
     const EnergyBand band = energy_band(ocean_case);
@@ -191,10 +211,11 @@ void require_valid_sampling(const OceanCase& ocean_case, const NumberFormat& num
                           : std::string())
         : std::string();
     throw InvalidInput(fmt::format(
-        "the {} grid carries {:.3g} of the spectrum's m0 = {:.4g} m² (at least {:g} is needed "
+        "the {} carries {:.3g} of the spectrum's m0 = {:.4g} m² (at least {:g} is needed "
         "for a surface that can be judged): its wave vectors span |k| = {:.3g} … {:.3g} rad/m "
-        "(Δk = 2π/L to π n/L){}; choose [grid] length and n so that the grid covers that band",
-        describe_grid(g), s.fraction, s.m0, kSmallestEnergyFraction, s.k_min, s.k_max, where));
+        "(Δk = 2π/L to the longest k){}; choose the patch length and {} so that the samples "
+        "cover that band",
+        describe_samples(sampling), s.fraction, s.m0, kSmallestEnergyFraction, s.k_min, s.k_max, where, size_key(sampling)));
   }
 
   // Range: every field's rms between smallest normal / u and largest / 64 (√ for the λ∂D
@@ -220,17 +241,17 @@ void require_valid_sampling(const OceanCase& ocean_case, const NumberFormat& num
     const double highest = (f.multiplied ? std::sqrt(numbers.largest) : numbers.largest) / 64;
     if (!(f.rms <= highest)) {
       throw InvalidInput(fmt::format(
-          "the {} of this case have an rms of {:.3g} on its {} grid, above the {:.3g} that {} "
+          "the {} of this case have an rms of {:.3g} on its {}, above the {:.3g} that {} "
           "values can hold with room for the largest samples{}: reduce {} (choppiness = {:g})",
-          f.what, f.rms, describe_grid(g), highest, numbers.name,
+          f.what, f.rms, describe_samples(sampling), highest, numbers.name,
           f.multiplied ? " (J multiplies two of them)" : "", f.parameter, ocean_case.choppiness));
     }
     if (!(f.rms >= lowest)) {
       throw InvalidInput(fmt::format(
-          "the {} of this case have an rms of {:.3g} on its {} grid, below the {:.3g} under which "
+          "the {} of this case have an rms of {:.3g} on its {}, below the {:.3g} under which "
           "{} values lose precision to underflow: raise {} (choppiness = {:g}, or synthesize and "
           "store in fp64)",
-          f.what, f.rms, describe_grid(g), lowest, numbers.name, f.parameter,
+          f.what, f.rms, describe_samples(sampling), lowest, numbers.name, f.parameter,
           ocean_case.choppiness));
     }
   }

@@ -231,6 +231,7 @@ GateFrames read_gate_frames(const CaseFile& case_file, const std::string& patter
     return !has_height || field == Field::height || frame == 0 || frame == count - 1;
   });
   out.ends.grid = out.all.grid;
+  out.ends.lattice = out.all.lattice;
   out.ends.unit_roundoff = out.all.unit_roundoff;
   out.ends.frames.push_back(out.all.frames.front());
   if (count > 1) out.ends.frames.push_back(out.all.frames.back());
@@ -277,8 +278,9 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
   GateReport report;
   report.subject = case_file.ocean.describe();
   report.frames = int(frames.frames.size());
-  report.nx = frames.grid.nx;
-  report.ny = frames.grid.ny;
+  // A lattice's N samples are reported as N×1 (one row of points in n).
+  report.nx = frames.lattice ? int(frames.sampling().size()) : frames.grid.nx;
+  report.ny = frames.lattice ? 1 : frames.grid.ny;
   for (Field field : reference::kAllFields) {
     if (ends.has(field)) report.fields.push_back(reference::field_name(field));
   }
@@ -366,12 +368,13 @@ GateReport run_gate(const std::filesystem::path& case_path, const GateOptions& o
   // (8 bytes) and its two complex waves in the dispersion fit (16), the two end frames' six
   // fields (96), the analysis' spectra and expected powers (64), and one frame of float
   // channels being decoded per reading thread (24).
-  const auto& grid = case_file.ocean.grid;
+  const auto sampling = case_file.ocean.sampling();
   const double per_sample = 24.0 * case_file.ocean.frames + 96 + 64 + 24.0 * threads;
-  const double bytes = double(grid.nx) * double(grid.ny) * per_sample;
+  const double bytes = double(sampling.size()) * per_sample;
   reference::require_memory(std::uint64_t(std::min(bytes, 1.8e19)), "swell gate",
-                            fmt::format("{} frame{} of {}×{}", case_file.ocean.frames,
-                                        case_file.ocean.frames == 1 ? "" : "s", grid.nx, grid.ny));
+                            fmt::format("{} frame{} on a {}", case_file.ocean.frames,
+                                        case_file.ocean.frames == 1 ? "" : "s",
+                                        sampling.describe()));
   // The rest of the rule before any frame is read (a case no frames can satisfy is refused as
   // such, not as a missing file); the analysis applies it again in the frames' stored format.
   reference::require_valid_sampling(case_file.ocean, reference::kFloat64);
@@ -380,9 +383,8 @@ GateReport run_gate(const std::filesystem::path& case_path, const GateOptions& o
   OIIO::attribute("threads", threads);
   OIIO::attribute("exr_threads", threads);
   report_progress(options,
-                  fmt::format("reading {} frame{} of {}×{}…", case_file.ocean.frames,
-                              case_file.ocean.frames == 1 ? "" : "s", case_file.ocean.grid.nx,
-                              case_file.ocean.grid.ny));
+                  fmt::format("reading {} frame{} on a {}…", case_file.ocean.frames,
+                              case_file.ocean.frames == 1 ? "" : "s", sampling.describe()));
   const GateFrames frames = read_gate_frames(case_file, options.input_pattern);
   const double reading = seconds_since(start);
   GateReport report = judge(case_file, frames.all, frames.ends, options, start);

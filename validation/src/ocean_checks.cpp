@@ -25,6 +25,7 @@ namespace {
 using reference::Field;
 using reference::FrameSequence;
 using reference::Grid;
+using reference::Sampling;
 using reference::OceanCase;
 using Complex = std::complex<double>;
 
@@ -140,64 +141,59 @@ class Analysis {
  public:
   Analysis(const OceanCase& ocean_case, const FrameSequence& frames,
            const OceanCheckOptions& options)
-      : c_(ocean_case), frames_(frames), options_(options), grid_(ocean_case.grid) {
-    const Grid& g = frames.grid;
-    if (g.nx != grid_.nx || g.ny != grid_.ny ||
-        std::abs(g.lx - grid_.lx) > 1e-9 * grid_.lx || std::abs(g.ly - grid_.ly) > 1e-9 * grid_.ly) {
-      throw InvalidInput(fmt::format("frames are {}×{} over {:g}×{:g} m but the case says "
-                                     "{}×{} over {:g}×{:g} m",
-                                     g.nx, g.ny, g.lx, g.ly, grid_.nx, grid_.ny, grid_.lx,
-                                     grid_.ly));
+      : c_(ocean_case), frames_(frames), options_(options), sampling_(ocean_case.sampling()) {
+    const Sampling given = frames.sampling();
+    if (!given.same_as(sampling_)) {
+      throw InvalidInput(fmt::format("frames are on a {} but the case says {}", given.describe(),
+                                     sampling_.describe()));
     }
     if (frames.frames.empty()) throw InvalidInput("no frames to check");
     if (!frames.has(Field::height)) {
       throw InvalidInput("the frames have no height field: every ocean check needs it");
     }
     require(options.alpha > 0 && options.alpha < 1, "alpha", "in (0, 1)", options.alpha);
-    count_ = std::size_t(grid_.nx) * grid_.ny;
+    count_ = sampling_.size();
     log2n_ = std::max(1.0, std::log2(double(count_)));
     u_ = std::max(frames.unit_roundoff, kFp64Roundoff);
     for (const auto& frame : frames.frames) times_.push_back(frame.time);
 
     const auto spectrum = c_.directional_spectrum();
-    tau_ = expected_travelling_power(*spectrum, grid_);
-    mu_ = expected_periodogram(tau_, grid_);  // τ(k) + τ(−k): Ψ evaluated once
+    tau_ = expected_travelling_power(*spectrum, sampling_);
+    mu_ = expected_periodogram(tau_, sampling_);  // τ(k) + τ(−k): Ψ evaluated once
     // The validity rule every command shares (reference/sampling_validity.hpp), in the number
     // format the frames were stored in: float32 (EXR, TIFF) or coarser (PNG) unless they carry
     // fp64's rounding.
     reference::require_valid_sampling(
         c_, frames.unit_roundoff > 2 * kFp64Roundoff ? reference::kFloat32 : reference::kFloat64, 0,
         "", &tau_);
-    spectrum0_ = field_spectrum(frames.field(0, Field::height), grid_);
+    spectrum0_ = field_spectrum(frames.field(0, Field::height), sampling_);
     mean_square0_ = mean_square(frames.field(0, Field::height));
 
     const double expected_total = std::accumulate(mu_.begin(), mu_.end(), 0.0);
     if (!(expected_total > 0)) {
-      throw InvalidInput("the case's spectrum puts no energy on this grid (" + c_.describe() + ")");
+      throw InvalidInput("the case's spectrum puts no energy on these samples (" + c_.describe() + ")");
     }
     // Rounding of the stored numbers moves a resolved wave vector's periodogram by < 10⁻⁶
     // relative — far below any sampling effect the checks test.
     floor_ = resolution_floor(u_, mean_square0_, count_);
 
-    for (int j = 0; j < grid_.ny; ++j) {
-      const int m = Grid::signed_index(j, grid_.ny);
-      for (int i = 0; i < grid_.nx; ++i) {
-        const int n = Grid::signed_index(i, grid_.nx);
-        if (!grid_.carries_energy(n, m) || !in_half_plane(n, m)) continue;
-        const std::size_t e = std::size_t(j) * grid_.nx + i;
-        Wave w;
-        w.index = e;
-        w.minus_index = std::size_t((grid_.ny - j) % grid_.ny) * grid_.nx + (grid_.nx - i) % grid_.nx;
-        w.kx = n * grid_.dkx();
-        w.ky = m * grid_.dky();
-        w.k = std::hypot(w.kx, w.ky);
-        w.omega = c_.omega(w.k);
-        w.theta = std::atan2(w.ky, w.kx);
-        w.mu = mu_[e];
-        w.tau_plus = tau_[e];
-        w.tau_minus = tau_[w.minus_index];
-        all_half_plane_.push_back(w);
-      }
+    const double dkx = sampling_.dkx(), dky = sampling_.dky();
+    for (std::size_t e = 0; e < count_; ++e) {
+      if (!sampling_.carries_energy(e)) continue;
+      const auto [n, m] = sampling_.wave_index(e);
+      if (!in_half_plane(n, m)) continue;
+      Wave w;
+      w.index = e;
+      w.minus_index = sampling_.conjugate(e);
+      w.kx = n * dkx;
+      w.ky = m * dky;
+      w.k = std::hypot(w.kx, w.ky);
+      w.omega = c_.omega(w.k);
+      w.theta = std::atan2(w.ky, w.kx);
+      w.mu = mu_[e];
+      w.tau_plus = tau_[e];
+      w.tau_minus = tau_[w.minus_index];
+      all_half_plane_.push_back(w);
     }
     if (options.free_scale) {
       // The maximum-likelihood scale of exponential ordinates: the mean of I/μ over the
@@ -227,7 +223,7 @@ class Analysis {
       const bool rounding_hides_all = std::any_of(
           all_half_plane_.begin(), all_half_plane_.end(), [](const Wave& w) { return w.mu > 0; });
       if (rounding_hides_all) throw_rounding_hides_every_wave(u_, c_);  // coarse integer frames
-      throw InvalidInput("no wave vector of the grid carries resolvable energy under the case's "
+      throw InvalidInput("no wave vector of the sampling carries resolvable energy under the case's "
                          "spectrum (" + c_.describe() + ")");
     }
   }
@@ -235,7 +231,7 @@ class Analysis {
   const OceanCase& ocean_case() const { return c_; }
   const FrameSequence& frames() const { return frames_; }
   const OceanCheckOptions& options() const { return options_; }
-  const Grid& grid() const { return grid_; }
+  const Sampling& sampling() const { return sampling_; }
   std::size_t count() const { return count_; }
   double log2n() const { return log2n_; }
   double unit_roundoff() const { return u_; }
@@ -256,7 +252,7 @@ class Analysis {
       series_.assign(resolved_.size(), std::vector<Complex>(times_.size()));
       for (std::size_t f = 0; f < times_.size(); ++f) {
         const auto spectrum = f == 0 ? spectrum0_
-                                     : field_spectrum(frames_.field(int(f), Field::height), grid_);
+                                     : field_spectrum(frames_.field(int(f), Field::height), sampling_);
         for (std::size_t w = 0; w < resolved_.size(); ++w) series_[w][f] = spectrum[resolved_[w].index];
       }
     }
@@ -283,7 +279,7 @@ class Analysis {
   const OceanCase& c_;
   const FrameSequence& frames_;
   OceanCheckOptions options_;
-  Grid grid_;
+  Sampling sampling_;
   std::size_t count_ = 0;
   double log2n_ = 1, u_ = kFp64Roundoff, scale_ = 1, floor_ = 0, mean_square0_ = 0;
   std::vector<double> times_, mu_, tau_;
@@ -322,7 +318,7 @@ Results check_hermitian(const Analysis& a, OceanCheckReport&) {
     }
     if (f == 0 || f + 1 == a.frames().frames.size()) {
       const auto& spectrum = f == 0 ? a.spectrum0()
-                                    : field_spectrum(a.frames().field(int(f), Field::height), a.grid());
+                                    : field_spectrum(a.frames().field(int(f), Field::height), a.sampling());
       double largest = 0, asymmetry = 0;
       for (const Wave& w : a.half_plane()) {
         largest = std::max(largest, std::abs(spectrum[w.index]));
@@ -359,8 +355,9 @@ Results check_hermitian(const Analysis& a, OceanCheckReport&) {
 Results check_parseval(const Analysis& a, OceanCheckReport&) {
   const auto backend = impls::make_backend(a.options().analysis_backend);
   impls::TransformSpec spec;
-  spec.nx = a.grid().nx;
-  spec.ny = a.grid().ny;
+  // A lattice's analysis is one 1-D transform over its N samples (DESIGN.md §1 "Sampling").
+  spec.nx = a.sampling().is_lattice() ? static_cast<int>(a.count()) : a.sampling().grid().nx;
+  spec.ny = a.sampling().is_lattice() ? 1 : a.sampling().grid().ny;
   spec.kind = impls::Kind::c2c;
   spec.direction = impls::Direction::forward;
   spec.precision = impls::Precision::f64;
@@ -436,7 +433,7 @@ Results check_energy(const Analysis& a, OceanCheckReport& report) {
     reason += fmt::format(": energy off by a factor {:.3g} (Hs by {:.3g})", ratio, std::sqrt(ratio));
     // The factors engines get wrong, when the sampling range of the ratio holds one.
     const double low = measured / law.quantile(1 - alpha / 2), high = measured / law.quantile(alpha / 2);
-    const double g = a.ocean_case().gravity, dk2 = a.grid().dkx() * a.grid().dky();
+    const double g = a.ocean_case().gravity, dk2 = a.sampling().dkx() * a.sampling().dky();
     const std::vector<std::pair<double, std::string>> known = {
         {2.0, "twice the energy: Tessendorf's (ξ1 + iξ2)√(P/2) without the ½ of E|h̃0|² = ½ΨΔk², "
               "or both halves of each ±k pair counted"},
@@ -534,26 +531,25 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
                   p < alpha ? " — the spectrum's shape differs from the case's" + shape_hint : "")));
 
   // Energy where the case puts (almost) none.
-  const Grid& g = a.grid();
+  const Sampling& sampling = a.sampling();
+  const bool grid = !sampling.is_lattice();
+  const Grid& g = sampling.grid();
   double stray = 0, largest_stray = 0, stray_corner = 0;
   std::size_t largest_at = 0;
   std::vector<double> weights;
-  for (int j = 0; j < g.ny; ++j) {
-    const int m = Grid::signed_index(j, g.ny);
-    for (int i = 0; i < g.nx; ++i) {
-      const int nn = Grid::signed_index(i, g.nx);
-      const std::size_t e = std::size_t(j) * g.nx + i;
-      const bool unresolved = !g.carries_energy(nn, m) || a.mu()[e] < a.floor();
-      if (!unresolved) continue;
-      const double power = a.periodogram0(e);
-      stray += power;
-      if (std::abs(nn) >= g.nx / 4 && std::abs(m) >= g.ny / 4) stray_corner += power;
-      if (power > largest_stray) {
-        largest_stray = power;
-        largest_at = e;
-      }
-      if (g.carries_energy(nn, m) && in_half_plane(nn, m) && a.mu()[e] > 0) weights.push_back(2 * a.mu()[e]);
+  for (std::size_t e = 0; e < a.count(); ++e) {
+    const bool carries = sampling.carries_energy(e);
+    const bool unresolved = !carries || a.mu()[e] < a.floor();
+    if (!unresolved) continue;
+    const auto [nn, m] = sampling.wave_index(e);
+    const double power = a.periodogram0(e);
+    stray += power;
+    if (grid && std::abs(nn) >= g.nx / 4 && std::abs(m) >= g.ny / 4) stray_corner += power;
+    if (power > largest_stray) {
+      largest_stray = power;
+      largest_at = e;
     }
+    if (carries && in_half_plane(nn, m) && a.mu()[e] > 0) weights.push_back(2 * a.mu()[e]);
   }
   double bound = 0;
   if (!weights.empty()) bound = stats::WeightedExponentialSum(weights).quantile(1 - alpha);
@@ -561,10 +557,14 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
   // land there.
   const double rounding = std::pow(16 * a.unit_roundoff() * a.log2n(), 2) * a.mean_square0();
   bound += rounding;
-  const int stray_i = int(largest_at % g.nx), stray_j = int(largest_at / g.nx);
-  const int stray_n = Grid::signed_index(stray_i, g.nx), stray_m = Grid::signed_index(stray_j, g.ny);
+  const auto [stray_n, stray_m] = sampling.wave_index(largest_at);
   std::string where = fmt::format("largest at (n, m) = ({}, {})", stray_n, stray_m);
-  if (Grid::is_nyquist(stray_n, g.nx) || Grid::is_nyquist(stray_m, g.ny)) where += ", the Nyquist row/column";
+  if (grid && (Grid::is_nyquist(stray_n, g.nx) || Grid::is_nyquist(stray_m, g.ny))) {
+    where += ", the Nyquist row/column";
+  }
+  if (!grid && largest_at != 0 && sampling.conjugate(largest_at) == largest_at) {
+    where += ", the lattice's self-conjugate class N/2";
+  }
   // A (−1)^(i+j) factor shifts the spectrum by (nx/2, ny/2): the waves pile up around the
   // Nyquist corner.
   if (stray_corner > 0.5 * stray) {
@@ -1043,7 +1043,9 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   // C(d) = Σk μ(k) e^(ik·d), Var(mean h³) = (6/n) Σd C(d)³ and the kurtosis linearizes to
   // mean He4(h)/σ⁴ with Var = (24/n) Σd C(d)⁴ / σ⁸ (Isserlis; Σd C(d) = 0 as k = 0 is empty).
   std::vector<Complex> mu_complex(a.mu().begin(), a.mu().end());
-  const auto covariance = field_from_spectrum(mu_complex, a.grid());
+  // On a lattice the differences of sample points are lattice points again (x_n − x_n' =
+  // x_(n−n')), so C over them is the lattice's own inverse transform of μ.
+  const auto covariance = field_from_spectrum(mu_complex, a.sampling());
   double sigma2 = covariance[0], c3 = 0, c4 = 0;
   for (double c : covariance) {
     c3 += c * c * c;
@@ -1155,7 +1157,7 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
 // §Derived fields). Rounding bound: the stored height's rounding, white with variance ≤ u²
 // mean(h²), pushed through the field's multiplier, plus the field's own rounding; 10× that.
 Results check_derived(const Analysis& a, OceanCheckReport& report) {
-  const Grid& g = a.grid();
+  const Sampling& g = a.sampling();
   const double lambda = a.ocean_case().choppiness;
   const std::vector<Field> derived = {Field::slope_x, Field::slope_y, Field::disp_x, Field::disp_y,
                                       Field::jacobian};
@@ -1190,15 +1192,11 @@ Results check_derived(const Analysis& a, OceanCheckReport& report) {
     auto derive = [&](const std::function<Complex(double, double)>& m, double& mean_m2) {
       std::vector<Complex> s(spectrum.size());
       mean_m2 = 0;
-      for (int j = 0; j < g.ny; ++j) {
-        const int mm = Grid::signed_index(j, g.ny);
-        for (int i = 0; i < g.nx; ++i) {
-          const int nn = Grid::signed_index(i, g.nx);
-          const std::size_t e = std::size_t(j) * g.nx + i;
-          const Complex mult = g.carries_energy(nn, mm) ? m(nn * g.dkx(), mm * g.dky()) : 0.0;
-          s[e] = mult * spectrum[e];
-          mean_m2 += std::norm(mult);
-        }
+      for (std::size_t e = 0; e < spectrum.size(); ++e) {
+        const auto [nn, mm] = g.wave_index(e);
+        const Complex mult = g.carries_energy(e) ? m(nn * g.dkx(), mm * g.dky()) : 0.0;
+        s[e] = mult * spectrum[e];
+        mean_m2 += std::norm(mult);
       }
       mean_m2 /= double(spectrum.size());
       return field_from_spectrum(s, g);
@@ -1292,7 +1290,7 @@ std::vector<std::string> ocean_check_names() {
 
 void require_judgeable_rounding(const OceanCase& ocean_case, double unit_roundoff,
                                 double mean_square_height) {
-  const auto mu = expected_periodogram(*ocean_case.directional_spectrum(), ocean_case.grid);
+  const auto mu = expected_periodogram(*ocean_case.directional_spectrum(), ocean_case.sampling());
   const double floor = resolution_floor(unit_roundoff, mean_square_height, mu.size());
   if (std::none_of(mu.begin(), mu.end(), [&](double m) { return m > 0 && m >= floor; })) {
     throw_rounding_hides_every_wave(unit_roundoff, ocean_case);

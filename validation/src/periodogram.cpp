@@ -1,6 +1,8 @@
 #include "swell/validation/periodogram.hpp"
 
 #include <algorithm>
+#include <limits>
+#include <string>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -136,6 +138,58 @@ std::vector<double> expected_periodogram(const std::vector<double>& travelling, 
 std::vector<double> expected_periodogram(const reference::DirectionalSpectrum& spectrum,
                                          const Grid& grid) {
   return expected_periodogram(expected_travelling_power(spectrum, grid), grid);
+}
+
+// A lattice's samples are one 1-D sequence over n: its analysis is the grid's with nx = N, ny = 1.
+namespace {
+Grid transform_shape(const reference::Sampling& sampling) {
+  if (!sampling.is_lattice()) return sampling.grid();
+  const auto points = sampling.lattice()->points();
+  if (points > std::numeric_limits<int>::max()) {
+    throw InvalidInput("a lattice of " + std::to_string(points) +
+                       " points is beyond the analysis transform (at most 2^31 − 1)");
+  }
+  return Grid{static_cast<int>(points), 1, sampling.lx(), sampling.ly()};
+}
+}  // namespace
+
+std::vector<std::complex<double>> field_spectrum(const std::vector<double>& field,
+                                                 const reference::Sampling& sampling) {
+  return field_spectrum(field, transform_shape(sampling));
+}
+
+std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
+                                        const reference::Sampling& sampling) {
+  return field_from_spectrum(spectrum, transform_shape(sampling));
+}
+
+std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,
+                                              const reference::Sampling& sampling) {
+  if (!sampling.is_lattice()) return expected_travelling_power(spectrum, sampling.grid());
+  std::vector<double> power(sampling.size(), 0.0);
+  const double dk2 = sampling.dkx() * sampling.dky();
+  for (std::size_t c = 0; c < power.size(); ++c) {
+    if (!sampling.carries_energy(c)) continue;
+    const auto [n, m] = sampling.wave_index(c);
+    power[c] = 0.5 * spectrum.psi(n * sampling.dkx(), m * sampling.dky()) * dk2;
+  }
+  return power;
+}
+
+std::vector<double> expected_periodogram(const std::vector<double>& travelling,
+                                         const reference::Sampling& sampling) {
+  if (!sampling.is_lattice()) return expected_periodogram(travelling, sampling.grid());
+  if (travelling.size() != sampling.size()) {
+    throw InvalidInput("travelling power size does not match the sampling");
+  }
+  std::vector<double> mu(travelling.size(), 0.0);
+  for (std::size_t c = 0; c < mu.size(); ++c) mu[c] = travelling[c] + travelling[sampling.conjugate(c)];
+  return mu;
+}
+
+std::vector<double> expected_periodogram(const reference::DirectionalSpectrum& spectrum,
+                                         const reference::Sampling& sampling) {
+  return expected_periodogram(expected_travelling_power(spectrum, sampling), sampling);
 }
 
 }  // namespace swell::validation

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <numbers>
+#include <span>
 
 #include "swell/reference/errors.hpp"
 #include "swell/reference/model_factory.hpp"
@@ -68,11 +69,15 @@ class Engine {
       spread_ = std::dynamic_pointer_cast<const reference::SpreadSpectrum>(psi_);
       if (!spread_) throw InvalidInput("test engine: spreading_not_normalized needs a spread Ψ");
     }
-    const Grid& g = c_.grid;
-    const int n_max = g.nx % 2 == 0 ? g.nx / 2 - 1 : (g.nx - 1) / 2;
-    const int m_max = g.ny % 2 == 0 ? g.ny / 2 - 1 : (g.ny - 1) / 2;
+    sampling_ = c_.sampling();
+    const reference::Sampling& g = sampling_;
     const double k_min = std::min(g.dkx(), g.dky());
-    const double k_max = std::hypot(n_max * g.dkx(), m_max * g.dky());
+    double k_max = 0;  // the largest |k| carrying energy (a grid's corner below Nyquist)
+    for (std::size_t e = 0; e < g.size(); ++e) {
+      if (!g.carries_energy(e)) continue;
+      const auto [n, m] = g.wave_index(e);
+      k_max = std::max(k_max, std::hypot(n * g.dkx(), m * g.dky()));
+    }
     band_lo_ = k_min + (k_max - k_min) / 3.0;
     band_hi_ = k_min + 2.0 * (k_max - k_min) / 3.0;
     h0_ = draw_amplitudes(0);
@@ -83,13 +88,14 @@ class Engine {
   const OceanCase& ocean_case() const { return c_; }
   EngineBug bug() const { return bug_; }
 
-  // h̃0 over the grid in FFT order (index j·nx + i of signed (n, m)).
+  // h̃0 per coefficient of the sampling (a grid's FFT order, index j·nx + i of signed (n, m);
+  // a lattice's class m).
   const std::vector<cplx>& initial_amplitudes() const { return h0_; }
 
   // h̃(k, t) at (n, m): what the engine's spectrum holds at time t.
   cplx amplitude(int n, int m, double t) const {
-    const Grid& g = c_.grid;
-    if (!g.carries_energy(n, m)) return 0.0;
+    const reference::Sampling& g = sampling_;
+    if (!carries_energy(n, m)) return 0.0;
     const double w = omega(std::hypot(n * g.dkx(), m * g.dky()));
     const cplx plus = h0_[index(n, m)];
     const cplx minus =
@@ -114,27 +120,33 @@ class Engine {
   }
 
  private:
+  // The coefficient of wave index (n, m): a grid's FFT-order entry; a lattice's residue class
+  // (n, m)·g mod N (for the k_m and −k_m the engine asks about, their own classes).
   std::size_t index(int n, int m) const {
+    if (c_.is_lattice()) {
+      const std::int64_t k[2] = {n, m};
+      return static_cast<std::size_t>(c_.lattice->residue(std::span<const std::int64_t>(k, 2)));
+    }
     const Grid& g = c_.grid;
     return std::size_t((m + g.ny) % g.ny) * g.nx + std::size_t((n + g.nx) % g.nx);
   }
+  bool carries_energy(int n, int m) const {
+    return c_.is_lattice() ? sampling_.carries_energy(index(n, m)) : c_.grid.carries_energy(n, m);
+  }
 
   std::vector<cplx> draw_amplitudes(std::uint32_t stream) const {
-    const Grid& g = c_.grid;
-    std::vector<cplx> out(std::size_t(g.nx) * g.ny, 0.0);
-    for (int j = 0; j < g.ny; ++j) {
-      for (int i = 0; i < g.nx; ++i) {
-        out[std::size_t(j) * g.nx + i] =
-            initial_amplitude(Grid::signed_index(i, g.nx), Grid::signed_index(j, g.ny), stream);
-      }
+    std::vector<cplx> out(sampling_.size(), 0.0);
+    for (std::size_t e = 0; e < out.size(); ++e) {
+      const auto [n, m] = sampling_.wave_index(e);
+      out[e] = initial_amplitude(n, m, stream);
     }
     return out;
   }
 
   // h̃0 at (n, m) from noise stream `stream`.
   cplx initial_amplitude(int n, int m, std::uint32_t stream) const {
-    const Grid& g = c_.grid;
-    if (!g.carries_energy(n, m)) return 0.0;
+    const reference::Sampling& g = sampling_;
+    if (!carries_energy(n, m)) return 0.0;
     const double kx = n * g.dkx(), ky = m * g.dky();
     const double dk2 = bug_ == EngineBug::amplitude_without_dk ? 1.0 : g.dkx() * g.dky();
     double scale = std::sqrt(psi(kx, ky) * dk2 / 2.0) / std::numbers::sqrt2;
@@ -205,6 +217,7 @@ class Engine {
   }
 
   OceanCase c_;
+  reference::Sampling sampling_;
   EngineBug bug_;
   reference::DirectionalSpectrumPtr psi_;
   std::shared_ptr<const reference::SpreadSpectrum> spread_;
@@ -217,7 +230,7 @@ class Engine {
 struct ComplexField {
   std::vector<double> re, im;
 };
-ComplexField complex_inverse(const std::vector<cplx>& spectrum, const Grid& grid,
+ComplexField complex_inverse(const std::vector<cplx>& spectrum, const reference::Sampling& grid,
                              bool with_imaginary) {
   ComplexField out;
   out.re = validation::field_from_spectrum(spectrum, grid);
@@ -234,42 +247,39 @@ enum Part { kH, kSx, kSy, kDx, kDy, kDxx, kDyy, kDxy, kParts };
 
 reference::FieldFrame render_frame(const Engine& engine, double t, bool keep_imaginary) {
   const OceanCase& c = engine.ocean_case();
-  const Grid& g = c.grid;
-  const std::size_t count = std::size_t(g.nx) * g.ny;
+  const reference::Sampling g = c.sampling();
+  const std::size_t count = g.size();
   const EngineBug bug = engine.bug();
   // Tessendorf's −i flips D and, consistently, its derivatives.
   const double d_sign = bug == EngineBug::displacement_sign_flipped ? -1.0 : 1.0;
 
   std::array<std::vector<cplx>, kParts> spectra;
   for (auto& s : spectra) s.assign(count, 0.0);
-  for (int j = 0; j < g.ny; ++j) {
-    const int m = Grid::signed_index(j, g.ny);
-    for (int i = 0; i < g.nx; ++i) {
-      const int n = Grid::signed_index(i, g.nx);
-      if (!g.carries_energy(n, m)) continue;  // k = 0 and Nyquist: 0 in every field
-      const double kx = n * g.dkx(), ky = m * g.dky(), k = std::hypot(kx, ky);
-      const cplx h = engine.amplitude(n, m, t);
-      const std::size_t at = std::size_t(j) * g.nx + i;
-      spectra[kH][at] = h;
-      spectra[kSx][at] = kI * kx * h;
-      spectra[kSy][at] = kI * ky * h;
-      spectra[kDx][at] = d_sign * kI * (kx / k) * h;
-      spectra[kDy][at] = d_sign * kI * (ky / k) * h;
-      spectra[kDxx][at] = d_sign * (-kx * kx / k) * h;
-      spectra[kDyy][at] = d_sign * (-ky * ky / k) * h;
-      spectra[kDxy][at] = d_sign * (-kx * ky / k) * h;
-    }
+  for (std::size_t at = 0; at < count; ++at) {
+    if (!g.carries_energy(at)) continue;  // k = 0 and Nyquist: 0 in every field
+    const auto [n, m] = g.wave_index(at);
+    const double kx = n * g.dkx(), ky = m * g.dky(), k = std::hypot(kx, ky);
+    const cplx h = engine.amplitude(n, m, t);
+    spectra[kH][at] = h;
+    spectra[kSx][at] = kI * kx * h;
+    spectra[kSy][at] = kI * ky * h;
+    spectra[kDx][at] = d_sign * kI * (kx / k) * h;
+    spectra[kDy][at] = d_sign * kI * (ky / k) * h;
+    spectra[kDxx][at] = d_sign * (-kx * kx / k) * h;
+    spectra[kDyy][at] = d_sign * (-ky * ky / k) * h;
+    spectra[kDxy][at] = d_sign * (-kx * ky / k) * h;
   }
 
   std::array<ComplexField, kParts> parts;
   for (int p = 0; p < kParts; ++p) parts[p] = complex_inverse(spectra[p], g, keep_imaginary);
 
   if (bug == EngineBug::checkerboard_sign) {
+    const Grid& grid = c.grid;  // only on grids (engine_bug_applies)
     for (auto& part : parts) {
-      for (int j = 0; j < g.ny; ++j) {
-        for (int i = 0; i < g.nx; ++i) {
+      for (int j = 0; j < grid.ny; ++j) {
+        for (int i = 0; i < grid.nx; ++i) {
           if ((i + j) % 2 == 0) continue;
-          const std::size_t at = std::size_t(j) * g.nx + i;
+          const std::size_t at = std::size_t(j) * grid.nx + i;
           part.re[at] = -part.re[at];
           if (keep_imaginary) part.im[at] = -part.im[at];
         }
@@ -345,6 +355,8 @@ std::vector<EngineBug> all_engine_bugs() {
 }
 
 bool engine_bug_applies(EngineBug bug, const OceanCase& ocean_case) {
+  // The checkerboard (−1)^(i+j) is a fix-up of grid indices; a lattice has none.
+  if (bug == EngineBug::checkerboard_sign) return !ocean_case.is_lattice();
   if (bug == EngineBug::sigma_wrong) return is_jonswap_family(ocean_case);
   if (bug == EngineBug::spreading_not_normalized) return !ocean_case.spreading.model.empty();
   return true;
@@ -360,6 +372,7 @@ reference::FrameSequence render_surface(const OceanCase& ocean_case, EngineBug b
   const Engine engine(ocean_case, bug);
   reference::FrameSequence sequence;
   sequence.grid = ocean_case.grid;
+  sequence.lattice = ocean_case.lattice;
   sequence.unit_roundoff = 0x1p-53;
   sequence.frames.reserve(std::size_t(ocean_case.frames));
   for (int f = 0; f < ocean_case.frames; ++f) {

@@ -10,11 +10,13 @@
 //   jacobian J = (1 + λ ∂Dx/∂x)(1 + λ ∂Dy/∂y) − λ² (∂Dx/∂y)²     1
 #include <array>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "swell/reference/grid.hpp"
+#include "swell/reference/sampling.hpp"
 
 namespace swell::reference {
 
@@ -38,7 +40,11 @@ struct FieldFrame {
 };
 
 struct FrameSequence {
+  // The samples (sampling()): a grid, or a 2-D lattice (then grid holds its lengths and
+  // nx = ny = 0, as in OceanCase). Each field holds sampling().size() values, in sample order.
   Grid grid;
+  std::shared_ptr<const RankOneLattice> lattice;
+  Sampling sampling() const { return lattice ? Sampling(lattice) : Sampling(grid); }
   std::vector<FieldFrame> frames;
   // Unit roundoff of the numbers as stored (2⁻²⁴ for float32, 2⁻⁵³ for float64, 2⁻¹¹ for
   // half): the floor below which the checks cannot resolve anything.

@@ -3,17 +3,27 @@
 // judge one (docs/conventions.md, docs/case_files.md). It is what a case file (case.toml)
 // holds: grid, frame times, physics, spectrum, spreading, synthesis settings and seed.
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "swell/reference/directional.hpp"
 #include "swell/reference/dispersion.hpp"
 #include "swell/reference/grid.hpp"
+#include "swell/reference/sampling.hpp"
 #include "swell/reference/model_factory.hpp"
 
 namespace swell::reference {
 
 struct OceanCase {
+  // The samples: a grid, or (lattice set) a 2-D rank-1 lattice over grid.lx × grid.ly, when
+  // grid.nx = grid.ny = 0 (set_lattice). Code that handles only grids asks is_lattice() and
+  // refuses a lattice by name.
   Grid grid;
+  std::shared_ptr<const RankOneLattice> lattice;
+  Sampling sampling() const { return lattice ? Sampling(lattice) : Sampling(grid); }
+  bool is_lattice() const { return lattice != nullptr; }
+  // Samples the patch with `lattice` (2-D): grid becomes its lengths, with nx = ny = 0.
+  void set_lattice(std::shared_ptr<const RankOneLattice> lattice);
 
   // Frame f is at time t0 + f·dt (s).
   double t0 = 0;

@@ -10,6 +10,7 @@
 
 #include "swell/reference/directional.hpp"
 #include "swell/reference/grid.hpp"
+#include "swell/reference/sampling.hpp"
 
 namespace swell::validation {
 
@@ -30,6 +31,18 @@ std::vector<double> expected_travelling_power(const reference::DirectionalSpectr
 std::vector<double> expected_periodogram(const std::vector<double>& travelling,
                                          const reference::Grid& grid);
 
+// The same on any sampling (DESIGN.md §1 "Sampling"): a grid as above; a lattice's analysis is
+// one forward 1-D FFT of its N samples over n, divided by N, coefficient m at k_m.
+std::vector<std::complex<double>> field_spectrum(const std::vector<double>& field,
+                                                 const reference::Sampling& sampling);
+std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
+                                        const reference::Sampling& sampling);
+std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,
+                                              const reference::Sampling& sampling);
+std::vector<double> expected_periodogram(const std::vector<double>& travelling,
+                                         const reference::Sampling& sampling);
+std::vector<double> expected_periodogram(const reference::DirectionalSpectrum& spectrum,
+                                         const reference::Sampling& sampling);
 // True for the representative of each ±k pair carrying energy: exactly one of k, −k.
 bool in_half_plane(int n, int m);
 
