@@ -21,6 +21,7 @@ Action add_fft_command(CLI::App& app);
 Action add_synth_command(CLI::App& app);
 Action add_fit_command(CLI::App& app);
 Action add_gate_command(CLI::App& app);
+Action add_lattice_command(CLI::App& app);
 
 // Writes JSON to FILE, or to standard output for "-".
 void write_json(const std::string& destination, const nlohmann::json& document);

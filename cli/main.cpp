@@ -70,6 +70,8 @@ int main(int argc, char** argv) {
   actions["fit"] = swell::cli::add_fit_command(*fit);
   auto* gate = app.add_subcommand("gate", "judge another engine's frames against its case file");
   actions["gate"] = swell::cli::add_gate_command(*gate);
+  auto* lattice = app.add_subcommand("lattice", "a rank-1 lattice: generator, merits, band and wave vectors");
+  actions["lattice"] = swell::cli::add_lattice_command(*lattice);
 
   // CLI11 says only "A subcommand is required" for a misspelt one; name it instead.
   if (argc > 1 && argv[1][0] != '-' && !actions.count(argv[1])) {

@@ -13,6 +13,7 @@
 // one parameter of whichever model takes it, and --n/--length set both axes unless --ny/--length-y
 // are given. A non-phillips spectrum without a spreading model gets cos2s with s = 10.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <charconv>
@@ -24,6 +25,10 @@
 
 #include "commands.hpp"
 #include "swell/impls/synthesizer.hpp"
+#include "swell/validation/npy.hpp"
+#include "swell/validation/mesh_io.hpp"
+#include "swell/reference/lattice_mesh.hpp"
+#include "swell/reference/lattice.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/model_factory.hpp"
 #include "swell/reference/sampling_validity.hpp"
@@ -76,6 +81,8 @@ struct SynthOptions {
   std::map<std::string, CLI::Option*> number_options, choice_options;
 
   std::string impl;
+  std::int64_t points = 0;         // --impl lattice: lattice points
+  std::string kind = "korobov";    // --impl lattice: korobov (spectral test) or fibonacci
   int n = 0, ny = 0;
   double length = 0, length_y = 0;
   std::string seed;
@@ -92,6 +99,30 @@ struct SynthOptions {
 
   bool has(const std::string& flag) const { return given.at(flag)->count() > 0; }
 };
+
+// --impl lattice[:fft=NAME]: rank-1 lattice synthesis (DESIGN.md §1 "Sampling") through the
+// 1-D transforms of backend NAME (default fftw; NAME may carry its own options, as
+// "fftw:threads=2"). Anything else is a grid backend.
+struct ImplChoice {
+  bool lattice = false;
+  std::string backend;  // the transform backend
+};
+
+ImplChoice parse_impl(const std::string& impl) {
+  const std::string prefix = "lattice";
+  if (impl.compare(0, prefix.size(), prefix) != 0 ||
+      (impl.size() > prefix.size() && impl[prefix.size()] != ':')) {
+    return {false, impl};
+  }
+  if (impl == prefix) return {true, "fftw"};
+  const std::string option = impl.substr(prefix.size() + 1);
+  if (option.compare(0, 4, "fft=") != 0 || option.size() == 4) {
+    throw InvalidInput(fmt::format("--impl {}: a lattice takes one option, fft=NAME (the 1-D "
+                                   "transform backend: {}), as lattice:fft=radix2",
+                                   impl, fmt::join(impls::backend_names(), ", ")));
+  }
+  return {true, option.substr(4)};
+}
 
 // CLI11 reads "-1" into a uint64 as 2⁶⁴ − 1; a seed is parsed here, digits only.
 std::uint64_t parse_seed(const std::string& text) {
@@ -123,11 +154,31 @@ validation::CaseFile build_case(const SynthOptions& o) {
   validation::CaseFile c;
   auto& ocean = c.ocean;
   const bool from_file = !o.case_file.empty();
+  const bool lattice = parse_impl(o.impl).lattice;
+  if (!lattice && (o.has("--points") || o.has("--kind"))) {
+    throw InvalidInput(fmt::format("{} chooses a lattice's points: it needs --impl "
+                                   "lattice[:fft=NAME] (got --impl {})",
+                                   o.has("--points") ? "--points" : "--kind", o.impl));
+  }
+  if (lattice && (o.has("--n") || o.has("--ny"))) {
+    throw InvalidInput("--n and --ny set a grid; a lattice (--impl lattice) takes --points N");
+  }
   if (from_file) {
     c = validation::read_case_file(o.case_file);
+    if (c.ocean.is_lattice() && !lattice) {
+      throw InvalidInput(fmt::format("{} samples a lattice ([sampling] kind = \"lattice\"): "
+                                     "synthesize it with --impl lattice[:fft=NAME]",
+                                     o.case_file));
+    }
+    if (lattice && !c.ocean.is_lattice() && !o.has("--points")) {
+      throw InvalidInput(fmt::format("--impl lattice on the grid case {}: give --points N (the "
+                                     "lattice replaces the grid over the same patch)",
+                                     o.case_file));
+    }
   } else {
     for (const auto& [flag, what] : {std::pair{"--model", "a spectrum model"},
-                                     std::pair{"--n", "the grid size"},
+                                     std::pair{lattice ? "--points" : "--n",
+                                               lattice ? "the lattice points" : "the grid size"},
                                      std::pair{"--length", "the patch size in m"}}) {
       if (!o.has(flag)) {
         throw InvalidInput(fmt::format("{} ({}) is required without --case", flag, what));
@@ -175,6 +226,7 @@ validation::CaseFile build_case(const SynthOptions& o) {
 
   // Grid, time, physics, synthesis.
   if (o.has("--n")) ocean.grid.nx = ocean.grid.ny = o.n;
+  if (lattice && !ocean.is_lattice()) ocean.grid.nx = ocean.grid.ny = 0;  // lengths only
   if (o.has("--ny")) ocean.grid.ny = o.ny;
   if (o.has("--length")) ocean.grid.lx = ocean.grid.ly = o.length;
   if (o.has("--length-y")) ocean.grid.ly = o.length_y;
@@ -187,6 +239,31 @@ validation::CaseFile build_case(const SynthOptions& o) {
   if (o.has("--choppiness")) ocean.choppiness = o.choppiness;
   if (o.has("--loop-period")) ocean.loop_period = o.loop_period;
   if (o.has("--seed")) ocean.seed = parse_seed(o.seed);
+  if (lattice) {
+    // The lattice over the case's patch: --points (and --kind) make a new one; a lattice case
+    // keeps its points and generator, over the patch --length may have changed.
+    const std::vector<double> lengths = {ocean.grid.lx, ocean.grid.ly};
+    for (const double l : lengths) {
+      if (!(std::isfinite(l) && l > 0)) {
+        throw InvalidInput(fmt::format("--length: the patch must be finite and > 0 m (got {:g})", l));
+      }
+    }
+    std::shared_ptr<const reference::RankOneLattice> chosen;
+    if (o.has("--points")) {
+      if (o.kind == "fibonacci") {
+        const int j = reference::fibonacci_index(o.points);
+        chosen = std::make_shared<const reference::RankOneLattice>(
+            reference::fibonacci_lattice(j, lengths[0], lengths[1]));
+      } else {
+        chosen = std::make_shared<const reference::RankOneLattice>(
+            reference::korobov_lattice(o.points, lengths));
+      }
+    } else {
+      chosen = std::make_shared<const reference::RankOneLattice>(reference::RankOneLattice::create(
+          ocean.lattice->points(), ocean.lattice->generator(), lengths));
+    }
+    ocean.set_lattice(std::move(chosen));
+  }
   ocean.validate();
   return c;
 }
@@ -200,9 +277,19 @@ double rms(const std::vector<double>& values) {
 int run_synth(const SynthOptions& o) {
   validation::CaseFile c = build_case(o);
   const auto& ocean = c.ocean;
+  const ImplChoice impl = parse_impl(o.impl);
   const auto precision = impls::precision_from_string(o.precision);
   validation::FrameWriteOptions write_options;
-  write_options.format = validation::frame_format_from_string(o.format);
+  // A lattice's frames are arrays of its N points: .npy unless asked otherwise (and then
+  // refused by name: an image needs a grid).
+  write_options.format = validation::frame_format_from_string(
+      impl.lattice && !o.has("--format") ? std::string("npy") : o.format);
+  if (impl.lattice && write_options.format != validation::FrameFormat::npy) {
+    throw InvalidInput(fmt::format("--format {}: lattice frames are written as npy (one array of "
+                                   "the N points per field, with points.npy and mesh.ply); "
+                                   "images need a grid",
+                                   o.format));
+  }
   write_options.float64 =
       precision == impls::Precision::f64 && write_options.format == validation::FrameFormat::npy;
   // PNG: 16 bits through a value range, and room for three fields (R, G, B): the height and
@@ -229,17 +316,22 @@ int run_synth(const SynthOptions& o) {
   const bool stores_fp64 = write_options.float64;
   const auto& numbers = precision == impls::Precision::f64 && stores_fp64 ? reference::kFloat64
                                                                          : reference::kFloat32;
-  const double samples = double(ocean.grid.nx) * double(ocean.grid.ny);
-  const double writer_bytes = samples * 6 * (stores_fp64 ? 8 : 4);
+  const double samples = double(ocean.sampling().size());
+  // A lattice: the synthesizer's row of N classes, and the mesh (about 100 bytes a point).
+  const reference::Grid transform_shape =
+      impl.lattice ? reference::Grid{static_cast<int>(std::min<double>(samples, 2147483647.0)), 1,
+                                     ocean.grid.lx, ocean.grid.ly}
+                   : ocean.grid;
+  const double writer_bytes = samples * 6 * (stores_fp64 ? 8 : 4) + (impl.lattice ? samples * 100 : 0);
   reference::require_valid_sampling(
       ocean, numbers,
-      impls::Synthesizer::bytes_needed(ocean.grid, precision) +
+      impls::Synthesizer::bytes_needed(transform_shape, precision) +
           std::uint64_t(std::min(writer_bytes, 1e18)),
       "swell synth");
 
   const auto start = std::chrono::steady_clock::now();
   impls::SynthesizerOptions options;
-  options.backend = o.impl;
+  options.backend = impl.backend;
   options.precision = precision;
   const impls::Synthesizer synthesizer(ocean, options);  // unknown backends name the valid ones
 
@@ -265,8 +357,14 @@ int run_synth(const SynthOptions& o) {
       for (const auto& file : files) fs::remove(file, ignored);
     }
   } cleanup{files};
+  validation::MeshSurface first_surface;  // a lattice's frame 0, for mesh.ply
   for (int f = 0; f < ocean.frames; ++f) {
     reference::FieldFrame frame = synthesizer.frame(ocean.time(f));
+    if (impl.lattice && f == 0) {
+      first_surface.h = frame.fields.at(Field::height);
+      first_surface.dx = frame.fields.at(Field::disp_x);
+      first_surface.dy = frame.fields.at(Field::disp_y);
+    }
     if (png && f == 0) {
       // The gate judges PNG frames by their quantization (frame_io.hpp): refuse before writing
       // a PNG whose step would hide every wave vector from it.
@@ -293,6 +391,32 @@ int run_synth(const SynthOptions& o) {
                  written.size() > 1 ? fmt::format(" (+{} files)", written.size() - 1) : "");
     }
   }
+  if (impl.lattice) {
+    // The points (N × 2, metres, float64) and the first frame as a tileable mesh (the periodic
+    // Delaunay triangulation of the lattice, two triangles a point; docs/lattice.md).
+    const auto& lat = *ocean.lattice;
+    std::vector<double> xy(2 * static_cast<std::size_t>(lat.points()));
+    for (std::int64_t n = 0; n < lat.points(); ++n) {
+      const auto x = lat.point(n);
+      xy[2 * static_cast<std::size_t>(n)] = x[0];
+      xy[2 * static_cast<std::size_t>(n) + 1] = x[1];
+    }
+    const fs::path points_path = out / "points.npy";
+    validation::write_npy(points_path, validation::NpyArray::from_values(
+                                           {static_cast<std::size_t>(lat.points()), 2},
+                                           std::span<const double>(xy)));
+    files.push_back(points_path);
+    const auto& g = lat.generator();
+    first_surface.mesh = reference::periodic_delaunay(lat.points(), g[0], g[1], lat.lengths()[0],
+                                                      lat.lengths()[1]);
+    const fs::path mesh_path = out / "mesh.ply";
+    validation::write_ply(mesh_path, first_surface);
+    files.push_back(mesh_path);
+    if (!quiet) {
+      fmt::print("points → {}; frame 0 as a tileable mesh ({} triangles) → {}\n",
+                 points_path.string(), 2 * lat.points(), mesh_path.string());
+    }
+  }
   c.input = validation::frame_input_spec(fields, write_options);
   c.directory = out;
   const fs::path case_path = out / "case.toml";
@@ -309,7 +433,10 @@ int run_synth(const SynthOptions& o) {
                                      {"impl", o.impl},
                                      {"precision", o.precision},
                                      {"format", o.format},
-                                     {"n", {ocean.grid.nx, ocean.grid.ny}},
+                                     {"n", ocean.is_lattice()
+                                               ? nlohmann::json{ocean.lattice->points()}
+                                               : nlohmann::json{ocean.grid.nx, ocean.grid.ny}},
+                                     {"sampling", ocean.sampling().describe()},
                                      {"frames", ocean.frames},
                                      {"files", names},
                                      {"seconds", seconds}};
@@ -354,7 +481,16 @@ Action add_synth_command(CLI::App& app) {
   }
   std::string names;
   for (const auto& name : impls::backend_names()) names += (names.empty() ? "" : ", ") + name;
-  app.add_option("--impl", o->impl, "transform backend (" + names + ")")->required();
+  app.add_option("--impl", o->impl,
+                 "transform backend (" + names + "), or lattice[:fft=NAME] for rank-1 lattice "
+                 "synthesis through NAME's 1-D transforms (default fftw)")
+      ->required();
+  o->given["--points"] = app.add_option("--points", o->points,
+                                        "--impl lattice: the number of lattice points N");
+  o->given["--kind"] = app.add_option("--kind", o->kind,
+                                      "--impl lattice: korobov (generator by the spectral test, "
+                                      "any N; default) or fibonacci (N a Fibonacci number)")
+                           ->check(CLI::IsMember({"korobov", "fibonacci"}));
   o->given["--n"] = app.add_option("--n", o->n, "samples along x (and y unless --ny)");
   o->given["--ny"] = app.add_option("--ny", o->ny, "samples along y");
   o->given["--length"] = app.add_option("--length", o->length, "patch size along x (and y unless --length-y) [m]");
@@ -374,7 +510,7 @@ Action add_synth_command(CLI::App& app) {
                                              "loop period [s]; 0 = none (default)");
   app.add_option("--precision", o->precision, "synthesis precision (default fp32)")
       ->check(CLI::IsMember({"fp32", "fp64"}));
-  app.add_option("--format", o->format, "frame files (default exr)")
+  o->given["--format"] = app.add_option("--format", o->format, "frame files (default exr; npy for a lattice)")
       ->check(CLI::IsMember({"exr", "npy", "tiff", "png"}));
   app.add_option("--value-range", o->value_range,
                  "png: the values pixel 0 and pixel 65535 stand for, LO,HI [m]; a value outside "
@@ -388,8 +524,11 @@ Action add_synth_command(CLI::App& app) {
       "--spreading the spreading model, a parameter flag sets one parameter). A spectrum other "
       "than phillips with no spreading model gets cos2s with s = 10. Writes DIR/frame_0000.exr "
       "(channels h sx sy dx dy J), or frame_0000_h.npy … (fp64 → float64 with --format npy), or "
-      ".tif, or 16-bit .png with height, disp_x, disp_y as R, G, B (--value-range), and DIR/case.toml, whose [input] reads them back. JSON: {case, description, impl, "
-      "precision, format, n, frames, files, seconds}.");
+      ".tif, or 16-bit .png with height, disp_x, disp_y as R, G, B (--value-range), and DIR/case.toml, whose [input] reads them back. "
+      "With --impl lattice[:fft=NAME] --points N [--kind korobov|fibonacci]: N-vectors "
+      "frame_0000_h.npy …, points.npy (N × 2, m), mesh.ply (frame 0, tileable) and a case.toml "
+      "with [sampling] kind = \"lattice\". JSON: {case, description, impl, "
+      "precision, format, n, sampling, frames, files, seconds}.");
   return [o] { return run_synth(*o); };
 }
 

@@ -2,6 +2,8 @@
 // problem is reported with the file, the line, the section and the key.
 #include "swell/validation/case_file.hpp"
 
+#include "swell/reference/lattice.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -29,8 +31,8 @@ namespace fs = std::filesystem;
 using reference::Field;
 using reference::ModelSpec;
 
-const std::vector<std::string> kSections = {"grid",      "time",      "physics", "spectrum",
-                                            "spreading", "synthesis", "input"};
+const std::vector<std::string> kSections = {"grid",      "sampling",  "time",  "physics",
+                                            "spectrum",  "spreading", "synthesis", "input"};
 // The parameters every frequency model takes, which a case holds once ([physics],
 // wind_dir_deg) instead of in [spectrum].
 const std::set<std::string> kCaseLevel = {"gravity", "depth", "wind_dir"};
@@ -382,18 +384,58 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
   out.directory = origin.parent_path();
   auto& ocean = out.ocean;
 
-  // [grid] n, length: required.
+  // [sampling] kind = "grid" (the default: [grid] n and length) or "lattice" (points and
+  // generator here, [grid] length only; DESIGN.md §1 "Sampling").
+  const Section sampling = section("sampling");
+  sampling.allow_only({"kind", "points", "generator"});
+  const std::string kind = sampling.string("kind").value_or("grid");
+  if (kind != "grid" && kind != "lattice") {
+    sampling.fail("kind", fmt::format("must be \"grid\" or \"lattice\" (got \"{}\")", kind));
+  }
+  const bool lattice = kind == "lattice";
+  if (!lattice && (sampling.has("points") || sampling.has("generator"))) {
+    sampling.fail(sampling.has("points") ? "points" : "generator",
+                  "belongs to kind = \"lattice\" (a grid's samples are [grid] n)");
+  }
+
+  // [grid] n, length: required (length only for a lattice).
   const Section grid = section("grid");
-  if (!grid.present()) report.fail("missing section [grid] (n = [nx, ny], length = [lx, ly] in m)");
+  if (!grid.present()) {
+    report.fail(lattice ? "missing section [grid] (length = [lx, ly] in m: the lattice's patch)"
+                        : "missing section [grid] (n = [nx, ny], length = [lx, ly] in m)");
+  }
   grid.allow_only({"n", "length"});
-  const auto n = grid.integer_pair("n");
-  if (!n) grid.missing("n", "samples [nx, ny]");
   const auto length = grid.number_pair("length");
   if (!length) grid.missing("length", "patch size [lx, ly] in m");
-  ocean.grid.nx = checked_int(grid, "n", (*n)[0], 1);
-  ocean.grid.ny = checked_int(grid, "n", (*n)[1], 1);
-  ocean.grid.lx = (*length)[0];
-  ocean.grid.ly = (*length)[1];
+  if (lattice) {
+    if (grid.has("n")) {
+      grid.fail("n", "a lattice case has no grid samples: its points are [sampling] points");
+    }
+    const auto points = sampling.integer("points");
+    if (!points) sampling.missing("points", "N, the number of lattice points");
+    const auto generator = sampling.integer_pair("generator");
+    if (!generator || !sampling.find("generator")->is_array()) {
+      if (!sampling.has("generator")) sampling.missing("generator", "[g0, g1], the lattice's generator");
+      sampling.wrong_type("generator", "an array of 2 integers [g0, g1]");
+    }
+    try {
+      ocean.set_lattice(std::make_shared<const reference::RankOneLattice>(
+          reference::RankOneLattice::create(*points, {(*generator)[0], (*generator)[1]},
+                                            {(*length)[0], (*length)[1]})));
+    } catch (const InvalidInput& e) {
+      sampling.fail("points", fmt::format("points = {}, generator = [{}, {}], length = [{:g}, "
+                                          "{:g}]: {}",
+                                          *points, (*generator)[0], (*generator)[1], (*length)[0],
+                                          (*length)[1], e.what()));
+    }
+  } else {
+    const auto n = grid.integer_pair("n");
+    if (!n) grid.missing("n", "samples [nx, ny]");
+    ocean.grid.nx = checked_int(grid, "n", (*n)[0], 1);
+    ocean.grid.ny = checked_int(grid, "n", (*n)[1], 1);
+    ocean.grid.lx = (*length)[0];
+    ocean.grid.ly = (*length)[1];
+  }
 
   // [time]
   const Section time = section("time");
@@ -559,8 +601,16 @@ std::string case_toml(const CaseFile& case_file) {
   std::string summary = c.describe();
   std::replace(summary.begin(), summary.end(), '\n', ' ');  // stays one comment line
   out += fmt::format("# {}\n\n", summary);
-  out += fmt::format("[grid]\nn = [{}, {}]\nlength = [{}, {}]\n\n", c.grid.nx, c.grid.ny,
-                     toml_number(c.grid.lx), toml_number(c.grid.ly));
+  if (c.is_lattice()) {
+    const auto& g = c.lattice->generator();
+    out += fmt::format("[grid]\nlength = [{}, {}]\n\n", toml_number(c.grid.lx),
+                       toml_number(c.grid.ly));
+    out += fmt::format("[sampling]\nkind = \"lattice\"\npoints = {}\ngenerator = [{}, {}]\n\n",
+                       c.lattice->points(), g[0], g[1]);
+  } else {
+    out += fmt::format("[grid]\nn = [{}, {}]\nlength = [{}, {}]\n\n", c.grid.nx, c.grid.ny,
+                       toml_number(c.grid.lx), toml_number(c.grid.ly));
+  }
   out += fmt::format("[time]\nt0 = {}\ndt = {}\nframes = {}\n\n", toml_number(c.t0),
                      toml_number(c.dt), c.frames);
   out += fmt::format("[physics]\ngravity = {}\ndepth = {}\n\n", toml_number(c.gravity),

@@ -388,12 +388,21 @@ double read_image_frame(const fs::path& path, StoredFormat format, const Grid& g
 
 // ------------------------------------------------------------------ reading arrays
 
-double read_npy_field(const fs::path& path, const Grid& grid, Field field, FieldFrame& frame) {
+// `lattice`: the case samples a lattice of grid.nx points (grid.ny = 1), one (N,) array a field.
+double read_npy_field(const fs::path& path, const Grid& grid, Field field, FieldFrame& frame,
+                      bool lattice = false) {
   const std::string file = path.string();
   const NpyArray array = read_npy(path);  // names the file and the problem
-  const std::vector<std::size_t> want = {static_cast<std::size_t>(grid.ny),
+  const std::vector<std::size_t> want =
+      lattice ? std::vector<std::size_t>{static_cast<std::size_t>(grid.nx)}
+              : std::vector<std::size_t>{static_cast<std::size_t>(grid.ny),
                                          static_cast<std::size_t>(grid.nx)};
   if (array.shape != want) {
+    if (lattice) {
+      throw InvalidInput(fmt::format("{}: wrong shape {}: the case's lattice needs (N,) = {} "
+                                     "([sampling] points = {})",
+                                     file, shape_string(array.shape), shape_string(want), grid.nx));
+    }
     throw InvalidInput(fmt::format("{}: wrong shape {}: the case's grid needs (ny, nx) = {} "
                                    "([grid] n = [{}, {}])",
                                    file, shape_string(array.shape), shape_string(want), grid.nx,
@@ -605,10 +614,13 @@ std::vector<fs::path> write_image_frame(const fs::path& path, const Grid& grid,
   return {path};
 }
 
+// A grid's field as a (ny, nx) array; a lattice's (grid.ny == 0, the case's own grid) as (N,).
 template <typename Real>
 NpyArray npy_of(const Grid& grid, const std::vector<double>& real, const std::vector<double>* imaginary) {
-  const std::vector<std::size_t> shape = {static_cast<std::size_t>(grid.ny),
-                                          static_cast<std::size_t>(grid.nx)};
+  const std::vector<std::size_t> shape =
+      grid.ny == 0 ? std::vector<std::size_t>{real.size()}
+                   : std::vector<std::size_t>{static_cast<std::size_t>(grid.ny),
+                                              static_cast<std::size_t>(grid.nx)};
   if (imaginary) {
     std::vector<std::complex<Real>> values(real.size());
     for (std::size_t k = 0; k < real.size(); ++k) {
@@ -679,7 +691,16 @@ std::vector<fs::path> write_frame(const fs::path& directory, const Grid& grid,
                                   const FrameWriteOptions& options) {
   if (index < 0) throw InvalidInput(fmt::format("frame index {} is negative", index));
   if (frame.fields.empty()) throw InvalidInput(fmt::format("frame {} has no fields to write", index));
-  const std::size_t count = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny);
+  // A lattice's frame (grid.nx = grid.ny = 0, reference::FrameSequence) is one array of the
+  // N points a field, only as .npy: an image needs a grid.
+  const bool lattice = grid.nx == 0 && grid.ny == 0;
+  if (lattice && options.format != FrameFormat::npy) {
+    throw InvalidInput(fmt::format("lattice frames are written as .npy (one array of the N "
+                                   "points per field); {} images need a grid",
+                                   to_string(options.format)));
+  }
+  const std::size_t count = lattice ? frame.fields.begin()->second.size()
+                                    : static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny);
   std::vector<Field> fields;
   for (Field field : reference::kAllFields) {
     const auto it = frame.fields.find(field);
@@ -796,14 +817,24 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
                                    "{} frames ([time] frames)",
                                    origin, pattern, ocean.frames));
   }
-  const Grid& grid = ocean.grid;
+  // A lattice's N points are read as one row of N samples.
+  const bool lattice = ocean.is_lattice();
+  const Grid grid = lattice ? Grid{static_cast<int>(ocean.lattice->points()), 1, ocean.grid.lx,
+                                   ocean.grid.ly}
+                            : ocean.grid;
+  if (lattice && format != StoredFormat::npy && format != StoredFormat::raw) {
+    throw InvalidInput(fmt::format("{}: \"{}\": a lattice case reads .npy or .raw frames (one "
+                                   "array of the N points per field); images need a grid",
+                                   origin, pattern));
+  }
   auto file_of = [&](int f, Field field) {
     return fs::path(with_suffix(expand(parsed, f),
                                 one_file_per_field(format) ? input.channels.at(field) : ""));
   };
 
   FrameSequence sequence;
-  sequence.grid = grid;
+  sequence.grid = ocean.grid;
+  sequence.lattice = ocean.lattice;
   const Field first_field = input.channels.begin()->first;
   auto read_frame = [&](int f, FieldFrame& frame) {
     double roundoff = 0;
@@ -830,7 +861,7 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
         case StoredFormat::png:
           u = read_image_frame(path, format, grid, input, keep_here, frame);
           break;
-        case StoredFormat::npy: u = read_npy_field(path, grid, field, frame); break;
+        case StoredFormat::npy: u = read_npy_field(path, grid, field, frame, lattice); break;
         case StoredFormat::raw: u = read_raw_field(path, grid, field, input.raw_type, frame); break;
       }
       roundoff = std::max(roundoff, u);
