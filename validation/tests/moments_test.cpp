@@ -23,6 +23,7 @@
 #include "swell/reference/errors.hpp"
 #include "swell/reference/frequency_spectrum.hpp"
 #include "swell/reference/grid.hpp"
+#include "swell/reference/model_factory.hpp"
 #include "swell/reference/moments.hpp"
 #include "swell/reference/spreading.hpp"
 
@@ -703,4 +704,47 @@ TEST(MeasuredSeaStateHz, MismatchedInputThrows) {
   EXPECT_THROW(sr::measured_sea_state_hz({0.1, 0.2}, {1.0}, {0.1, 0.1}), swell::InvalidInput);
   EXPECT_THROW(sr::measured_sea_state_hz({0.1, 0.2}, {1.0, 2.0}, {0.1}), swell::InvalidInput);
   EXPECT_THROW(sr::measured_sea_state_hz({}, {}, {}), swell::InvalidInput);
+}
+
+// A TMA with γ = 5 over deep water lists two breakpoints 1.7e-8 rad/s apart (its numerical
+// peak and its JONSWAP's σ switch at ωp). On that sliver the quadrature's error estimate never
+// met its tolerance and it bisected to max depth: 4·10⁶ evaluations a moment, 6 s for a gate of
+// 16² (drawn by the property test, past its time limit under the sanitizers). Breakpoints that
+// close are merged: each moment takes a few hundred evaluations, with the same value.
+namespace {
+struct CountingSpectrum final : swell::reference::FrequencySpectrum {
+  explicit CountingSpectrum(const swell::reference::FrequencySpectrum& inner) : inner(inner) {}
+  double operator()(double omega) const override {
+    ++evaluations;
+    return inner(omega);
+  }
+  double peak_omega() const override { return inner.peak_omega(); }
+  double tail_exponent() const override { return inner.tail_exponent(); }
+  std::vector<double> breakpoints() const override { return inner.breakpoints(); }
+  std::string name() const override { return inner.name(); }
+  std::vector<swell::reference::Parameter> parameters() const override { return inner.parameters(); }
+  const swell::reference::FrequencySpectrum& inner;
+  mutable long evaluations = 0;
+};
+}  // namespace
+
+TEST(SpectralMoments, NearlyCoincidentBreakpointsCostFewEvaluations) {
+  const auto tma = swell::reference::make_frequency_spectrum(
+      {"tma",
+       {{"hs", 8.19593}, {"tp", 4.59311}, {"gamma", 5.14278}, {"depth", 5382.23}},
+       {{"depth_factor", "thompson-vincent"}}});
+  const auto points = tma->breakpoints();
+  bool close_pair = false;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t j = i + 1; j < points.size(); ++j) {
+      const double gap = std::abs(points[i] - points[j]);
+      close_pair = close_pair || (gap > 0 && gap < 1e-6 * points[i]);
+    }
+  }
+  EXPECT_TRUE(close_pair) << "the case no longer has the nearly coincident breakpoints it tests";
+  const CountingSpectrum counted(*tma);
+  const double m0 = swell::reference::spectral_moment(counted, 0);
+  EXPECT_LT(counted.evaluations, 20000);
+  // Hs is the case's: the exact normalization makes m0 = Hs²/16.
+  EXPECT_NEAR(m0, 8.19593 * 8.19593 / 16, 1e-9 * m0);
 }
