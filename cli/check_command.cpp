@@ -34,7 +34,25 @@ int run_check(const CheckOptions& o) {
   // a device) is left out, saying why; asked for by name, it is an error (exit 2).
   std::vector<std::string> impls;
   nlohmann::json unavailable = nlohmann::json::object();
-  for (const auto& name : o.impl == "all" ? impls::backend_names() : std::vector<std::string>{o.impl}) {
+  // lattice[:fft=NAME]: rank-1 lattice synthesis through NAME's 1-D transforms (default fftw);
+  // with "all", the lattice rows run through fftw. Lattices have ocean rows only (their
+  // transforms are the backends' own, checked under those names).
+  std::string lattice_fft = o.impl == "all" ? "fftw" : "";
+  if (o.impl.rfind("lattice", 0) == 0) {
+    if (o.impl == "lattice") {
+      lattice_fft = "fftw";
+    } else if (o.impl.rfind("lattice:fft=", 0) == 0 && o.impl.size() > 12) {
+      lattice_fft = o.impl.substr(12);
+    } else {
+      throw InvalidInput("--impl " + o.impl + ": a lattice takes one option, fft=NAME, as "
+                         "lattice:fft=radix2");
+    }
+    impls::make_backend(lattice_fft);  // an unknown backend names the valid ones (exit 2)
+  }
+  const bool lattice_only = o.impl.rfind("lattice", 0) == 0;
+  for (const auto& name : o.impl == "all" ? impls::backend_names()
+                          : lattice_only  ? std::vector<std::string>{}
+                                          : std::vector<std::string>{o.impl}) {
     try {
       impls::make_backend(name);
       impls.push_back(name);
@@ -67,6 +85,12 @@ int run_check(const CheckOptions& o) {
       if (o.impl == "all" && !impls::make_backend(name)->capabilities().exact) continue;
       std::cerr << "checking ocean surfaces synthesized with " << name << "…\n";
       const auto rows = validation::run_ocean_matrix(name, options, o.n);
+      ocean.insert(ocean.end(), rows.begin(), rows.end());
+    }
+    if (!lattice_fft.empty()) {
+      std::cerr << "checking ocean surfaces synthesized on rank-1 lattices with lattice:fft="
+                << lattice_fft << "…\n";
+      const auto rows = validation::run_lattice_ocean_matrix(lattice_fft, options, o.n);
       ocean.insert(ocean.end(), rows.begin(), rows.end());
     }
   }
@@ -127,7 +151,9 @@ Action add_check_command(CLI::App& app) {
   app.add_option("what", o->what,
                  "which validations: reference, transforms, ocean, or all (default)")
       ->check(CLI::IsMember({"reference", "transforms", "ocean", "all"}));
-  app.add_option("--impl", o->impl, "transform backend to check, or all (default)");
+  app.add_option("--impl", o->impl,
+                 "transform backend to check, lattice[:fft=NAME] (ocean rows on rank-1 "
+                 "lattices), or all (default; lattice rows through fftw)");
   app.footer([] { return backends_summary(); });
   app.add_option("--json", o->json, "also write the results as JSON to FILE, or - for stdout");
   app.add_option("--report-dir", o->report_dir, "where the JSON and Markdown reports go")

@@ -91,7 +91,7 @@ int run_fit(const FitOptions& o) {
   // The validity rule every command shares, before any frame is read: per sample and
   // realization, the frames' height (8 bytes) and its periodogram (8), and the fit's model and
   // its derivatives (8 per parameter, 5 at most).
-  const double samples = double(ocean.grid.nx) * double(ocean.grid.ny);
+  const double samples = double(ocean.sampling().size());
   const double bytes = samples * (16.0 * double(o.inputs.size()) * ocean.frames + 48);
   reference::require_valid_sampling(ocean, reference::kFloat64, std::uint64_t(std::min(bytes, 1.8e19)),
                                     "swell fit");

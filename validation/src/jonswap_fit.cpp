@@ -192,26 +192,24 @@ Geometry geometry(const OceanCase& ocean_case, bool half_plane) {
                 : reference::kitaigorodskii_exact(omega, depth, g);
     };
   }
-  const Grid& grid = ocean_case.grid;
-  const double dk2 = grid.dkx() * grid.dky();
+  const reference::Sampling sampling = ocean_case.sampling();
+  const double dk2 = sampling.dkx() * sampling.dky();
   Geometry out;
-  for (int j = 0; j < grid.ny; ++j) {
-    const int m = Grid::signed_index(j, grid.ny);
-    for (int i = 0; i < grid.nx; ++i) {
-      const int n = Grid::signed_index(i, grid.nx);
-      if (!grid.carries_energy(n, m) || (half_plane && !in_half_plane(n, m))) continue;
-      const double kx = n * grid.dkx(), ky = m * grid.dky();
-      const double k = std::hypot(kx, ky);
-      const double omega = dispersion.omega(k);
-      const double theta = std::atan2(ky, kx) - theta_w;
-      const double a = 0.5 *
-                       (spreading(omega, theta) + spreading(omega, theta + std::numbers::pi)) *
-                       dispersion.group_velocity(k) / k * dk2 * depth_factor(omega);
-      if (!(a > 0) || !(omega > 0) || !std::isfinite(a)) continue;
-      out.index.push_back(std::size_t(j) * grid.nx + i);
-      out.omega.push_back(omega);
-      out.base.push_back(std::log(a) - 5.0 * std::log(omega));
-    }
+  for (std::size_t e = 0; e < sampling.size(); ++e) {
+    if (!sampling.carries_energy(e)) continue;
+    const auto [n, m] = sampling.wave_index(e);
+    if (half_plane && !in_half_plane(n, m)) continue;
+    const double kx = n * sampling.dkx(), ky = m * sampling.dky();
+    const double k = std::hypot(kx, ky);
+    const double omega = dispersion.omega(k);
+    const double theta = std::atan2(ky, kx) - theta_w;
+    const double a = 0.5 *
+                     (spreading(omega, theta) + spreading(omega, theta + std::numbers::pi)) *
+                     dispersion.group_velocity(k) / k * dk2 * depth_factor(omega);
+    if (!(a > 0) || !(omega > 0) || !std::isfinite(a)) continue;
+    out.index.push_back(e);
+    out.omega.push_back(omega);
+    out.base.push_back(std::log(a) - 5.0 * std::log(omega));
   }
   return out;
 }
@@ -848,7 +846,7 @@ std::vector<double> jonswap_model_periodogram(const OceanCase& ocean_case,
   require_finite_parameters(parameters);
   Whittle w;
   w.geometry = geometry(ocean_case, false);
-  std::vector<double> mu(std::size_t(ocean_case.grid.nx) * ocean_case.grid.ny, 0.0);
+  std::vector<double> mu(ocean_case.sampling().size(), 0.0);
   w.for_each_log_mu(std::log(parameters.hs), std::log(parameters.tp), std::log(parameters.gamma),
                     parameters.sigma_a, parameters.sigma_b, [&](std::size_t i, double log_mu) {
                       mu[w.geometry.index[i]] = std::exp(log_mu);
@@ -861,14 +859,14 @@ JonswapFit fit_jonswap_periodograms(const OceanCase& ocean_case,
                                     const JonswapFitOptions& options, double unit_roundoff) {
   ocean_case.validate();
   require_family(ocean_case);
-  const Grid& grid = ocean_case.grid;
-  const std::size_t count = std::size_t(grid.nx) * grid.ny;
+  const Grid& grid = ocean_case.grid;  // its lengths (a lattice's patch)
+  const std::size_t count = ocean_case.sampling().size();
   if (periodograms.empty()) throw InvalidInput("the JONSWAP fit needs at least one realization");
   for (std::size_t r = 0; r < periodograms.size(); ++r) {
     if (periodograms[r].size() != count) {
       throw InvalidInput(
-          fmt::format("periodogram of realization {} has {} values; the case's grid {}×{} needs {}",
-                      r, periodograms[r].size(), grid.nx, grid.ny, count));
+          fmt::format("periodogram of realization {} has {} values; the case's {} needs {}",
+                      r, periodograms[r].size(), ocean_case.sampling().describe(), count));
     }
     for (double value : periodograms[r]) {
       if (!(std::isfinite(value) && value >= 0)) {
@@ -1012,18 +1010,15 @@ JonswapFit fit_jonswap(const OceanCase& ocean_case,
   ocean_case.validate();
   require_family(ocean_case);
   if (realizations.empty()) throw InvalidInput("the JONSWAP fit needs at least one realization");
-  const Grid& grid = ocean_case.grid;
-  auto close = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::abs(b); };
+  const reference::Sampling sampling = ocean_case.sampling();
   std::vector<std::vector<double>> periodograms;
   double unit_roundoff = 0;
   for (std::size_t r = 0; r < realizations.size(); ++r) {
     const auto& frames = realizations[r];
-    const Grid& g = frames.grid;
-    if (g.nx != grid.nx || g.ny != grid.ny || !close(g.lx, grid.lx) || !close(g.ly, grid.ly)) {
-      throw InvalidInput(fmt::format(
-          "realization {}: frames on a {}×{} grid over {:g}×{:g} m, the case's grid is {}×{} "
-          "over {:g}×{:g} m",
-          r, g.nx, g.ny, g.lx, g.ly, grid.nx, grid.ny, grid.lx, grid.ly));
+    const reference::Sampling g = frames.sampling();
+    if (!g.same_as(sampling)) {
+      throw InvalidInput(fmt::format("realization {}: frames on a {}, the case's is {}", r,
+                                     g.describe(), sampling.describe()));
     }
     if (options.frame < 0 || options.frame >= int(frames.frames.size())) {
       throw InvalidInput(fmt::format("realization {}: frame {} requested, it has {} frame(s)", r,
@@ -1034,7 +1029,7 @@ JonswapFit fit_jonswap(const OceanCase& ocean_case,
           fmt::format("realization {}: frame {} has no height field; the JONSWAP fit needs heights",
                       r, options.frame));
     }
-    const auto spectrum = field_spectrum(frames.field(options.frame, reference::Field::height), g);
+    const auto spectrum = field_spectrum(frames.field(options.frame, reference::Field::height), sampling);
     std::vector<double> periodogram(spectrum.size());
     for (std::size_t i = 0; i < spectrum.size(); ++i) periodogram[i] = std::norm(spectrum[i]);
     periodograms.push_back(std::move(periodogram));

@@ -1,5 +1,9 @@
 #include "swell/validation/ocean_matrix.hpp"
 
+#include <memory>
+
+#include "swell/reference/lattice.hpp"
+
 #include <fmt/format.h>
 
 #include <chrono>
@@ -86,9 +90,51 @@ std::vector<OceanMatrixRow> run_ocean_matrix(const std::string& backend,
   return rows;
 }
 
+std::vector<OceanMatrixRow> run_lattice_ocean_matrix(const std::string& fft_backend,
+                                                     const OceanCheckOptions& options, int n) {
+  const std::int64_t points = std::int64_t(n) * n;
+  // The Fibonacci number nearest n².
+  int j = 3;
+  while (reference::fibonacci_number(j + 1) <= points) ++j;
+  if (points - reference::fibonacci_number(j) > reference::fibonacci_number(j + 1) - points) ++j;
+  std::vector<OceanMatrixRow> rows;
+  for (const auto& builtin : builtin_ocean_cases(n)) {
+    const std::vector<double> lengths = {builtin.ocean_case.grid.lx, builtin.ocean_case.grid.ly};
+    const std::vector<std::shared_ptr<const reference::RankOneLattice>> lattices = {
+        std::make_shared<const reference::RankOneLattice>(reference::korobov_lattice(points, lengths)),
+        std::make_shared<const reference::RankOneLattice>(
+            reference::fibonacci_lattice(j, lengths[0], lengths[1]))};
+    for (const auto& lattice : lattices) {
+      reference::OceanCase ocean_case = builtin.ocean_case;
+      ocean_case.set_lattice(lattice);
+      for (auto precision : {impls::Precision::f32, impls::Precision::f64}) {
+        OceanMatrixRow row;
+        row.case_name = builtin.name + " @ " + lattice->describe();
+        row.backend = "lattice:fft=" + fft_backend;
+        row.precision = precision;
+        auto start = std::chrono::steady_clock::now();
+        const auto frames = impls::Synthesizer(ocean_case, {fft_backend, precision}).frames();
+        row.synthesis_seconds = seconds_since(start);
+        start = std::chrono::steady_clock::now();
+        OceanCheckOptions own = options;
+        own.analysis_backend = fft_backend;
+        row.report = run_ocean_checks(ocean_case, frames, own);
+        row.check_seconds = seconds_since(start);
+        rows.push_back(std::move(row));
+      }
+    }
+  }
+  return rows;
+}
+
 std::string render_ocean_matrix(const std::vector<OceanMatrixRow>& rows) {
   const auto checks = ocean_check_names();
-  std::string out = fmt::format("{:<26} {:<8} {:<5}", "case", "backend", "prec");
+  std::size_t case_width = 26, backend_width = 8;
+  for (const auto& row : rows) {
+    case_width = std::max(case_width, row.case_name.size());
+    backend_width = std::max(backend_width, row.backend.size());
+  }
+  std::string out = fmt::format("{:<{}} {:<{}} {:<5}", "case", case_width, "backend", backend_width, "prec");
   for (const auto& check : checks) out += fmt::format(" {:>10}", check);
   out += "\n";
   std::string failures;
@@ -102,7 +148,8 @@ std::string render_ocean_matrix(const std::vector<OceanMatrixRow>& rows) {
                                 impls::to_string(row.precision), r.check, r.reason);
       }
     }
-    out += fmt::format("{:<26} {:<8} {:<5}", row.case_name, row.backend, impls::to_string(row.precision));
+    out += fmt::format("{:<{}} {:<{}} {:<5}", row.case_name, case_width, row.backend, backend_width,
+                       impls::to_string(row.precision));
     for (const auto& check : checks) {
       out += fmt::format(" {:>10}", status.count(check) ? status[check] : "–");
     }
