@@ -213,9 +213,11 @@ void require_valid_sampling(const OceanCase& ocean_case, const NumberFormat& num
     throw InvalidInput(fmt::format(
         "the {} carries {:.3g} of the spectrum's m0 = {:.4g} m² (at least {:g} is needed "
         "for a surface that can be judged): its wave vectors span |k| = {:.3g} … {:.3g} rad/m "
-        "(Δk = 2π/L to the longest k){}; choose the patch length and {} so that the samples "
-        "cover that band",
-        describe_samples(sampling), s.fraction, s.m0, kSmallestEnergyFraction, s.k_min, s.k_max, where, size_key(sampling)));
+        "(Δk = 2π/L to {}){}; choose {} so that the {} covers that band",
+        describe_samples(sampling), s.fraction, s.m0, kSmallestEnergyFraction, s.k_min, s.k_max,
+        sampling.is_lattice() ? "the longest k_m" : "π n/L", where,
+        sampling.is_lattice() ? "[grid] length and [sampling] points" : "[grid] length and n",
+        sampling.is_lattice() ? "lattice" : "grid"));
   }
 
   // Range: every field's rms between smallest normal / u and largest / 64 (√ for the λ∂D

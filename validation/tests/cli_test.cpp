@@ -159,12 +159,19 @@ TEST(CliCheck, AllPassesAndWritesReports) {
     }
   }
   // The ocean matrix: every exact backend × fp32/fp64 × the 4 built-in cases, all passing
-  // (vulkan's frames synthesized on the device).
-  std::set<std::string> ocean_backends, ocean_cases;
-  ASSERT_EQ(doc.at("ocean").size(), expected.size() * 2u * 4u);
+  // (vulkan's frames synthesized on the device); then the lattice rows: the 4 cases on a
+  // Korobov and a Fibonacci lattice × fp32/fp64 through lattice:fft=fftw.
+  std::set<std::string> ocean_backends, ocean_cases, lattice_cases;
+  ASSERT_EQ(doc.at("ocean").size(), expected.size() * 2u * 4u + 2u * 2u * 4u);
   for (const auto& row : doc.at("ocean")) {
-    ocean_backends.insert(row.at("backend").get<std::string>());
-    ocean_cases.insert(row.at("case").get<std::string>());
+    const auto backend = row.at("backend").get<std::string>();
+    const auto name = row.at("case").get<std::string>();
+    if (backend == "lattice:fft=fftw") {
+      lattice_cases.insert(name);
+    } else {
+      ocean_backends.insert(backend);
+      ocean_cases.insert(name);
+    }
     EXPECT_TRUE(row.at("pass").get<bool>()) << row.dump();
     EXPECT_EQ(row.at("failed"), 0) << row.dump();
     EXPECT_GE(row.at("checks").size(), 20u);
@@ -172,6 +179,12 @@ TEST(CliCheck, AllPassesAndWritesReports) {
   EXPECT_EQ(ocean_backends, expected);
   EXPECT_EQ(ocean_cases, (std::set<std::string>{"jonswap_deep", "tma_10m", "phillips",
                                                  "pierson_moskowitz_cos2s"}));
+  EXPECT_EQ(lattice_cases.size(), 8u);  // 4 cases × {korobov, fibonacci}
+  for (const auto& name : lattice_cases) {
+    EXPECT_TRUE(name.find("@ korobov N=") != std::string::npos ||
+                name.find("@ fibonacci N=") != std::string::npos)
+        << name;
+  }
   EXPECT_TRUE(std::filesystem::exists(dir / "check_all.md"));
   std::filesystem::remove_all(dir);
 }
