@@ -14,6 +14,7 @@
 #include <set>
 
 #include "swell/impls/synthesizer.hpp"
+#include "swell/reference/lattice.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/validation/ocean_checks.hpp"
 #include "swell/validation/ocean_matrix.hpp"
@@ -446,5 +447,21 @@ void calibrate(const OceanCase& base, int seeds) {
 
 TEST(Calibration, FalseAlarmRatesOverTwoHundredSeedsJonswapDeep) { calibrate(jonswap_deep(), 200); }
 TEST(Calibration, FalseAlarmRatesOverTwoHundredSeedsTmaShallow) { calibrate(tma_shallow(), 200); }
+
+// The same on rank-1 lattices of about the grids' 64² points (DESIGN.md §1 "Sampling"): the
+// checks judge a lattice's N coefficients by the same laws, so their false-alarm rates hold
+// there too — a Korobov lattice by the spectral test and a Fibonacci one.
+OceanCase on_lattice(OceanCase c, bool fibonacci) {
+  c.set_lattice(std::make_shared<const swell::reference::RankOneLattice>(
+      fibonacci ? swell::reference::fibonacci_lattice(19, c.grid.lx, c.grid.ly)  // N = 4181
+                : swell::reference::korobov_lattice(4096, {c.grid.lx, c.grid.ly})));
+  return c;
+}
+TEST(Calibration, FalseAlarmRatesOverTwoHundredSeedsJonswapDeepKorobovLattice) {
+  calibrate(on_lattice(jonswap_deep(), false), 200);
+}
+TEST(Calibration, FalseAlarmRatesOverTwoHundredSeedsTmaShallowFibonacciLattice) {
+  calibrate(on_lattice(tma_shallow(), true), 200);
+}
 
 }  // namespace
