@@ -97,13 +97,18 @@ std::vector<OceanMatrixRow> run_lattice_ocean_matrix(const std::string& fft_back
   int j = 3;
   while (reference::fibonacci_number(j + 1) <= points) ++j;
   if (points - reference::fibonacci_number(j) > reference::fibonacci_number(j + 1) - points) ++j;
+  const bool any_size = impls::make_backend(fft_backend)->capabilities().any_size;
   std::vector<OceanMatrixRow> rows;
   for (const auto& builtin : builtin_ocean_cases(n)) {
     const std::vector<double> lengths = {builtin.ocean_case.grid.lx, builtin.ocean_case.grid.ly};
-    const std::vector<std::shared_ptr<const reference::RankOneLattice>> lattices = {
-        std::make_shared<const reference::RankOneLattice>(reference::korobov_lattice(points, lengths)),
-        std::make_shared<const reference::RankOneLattice>(
-            reference::fibonacci_lattice(j, lengths[0], lengths[1]))};
+    std::vector<std::shared_ptr<const reference::RankOneLattice>> lattices = {
+        std::make_shared<const reference::RankOneLattice>(reference::korobov_lattice(points, lengths))};
+    // A Fibonacci N is no power of two: only for backends of any size (radix2 and vulkan
+    // run the Korobov rows alone).
+    if (any_size) {
+      lattices.push_back(std::make_shared<const reference::RankOneLattice>(
+          reference::fibonacci_lattice(j, lengths[0], lengths[1])));
+    }
     for (const auto& lattice : lattices) {
       reference::OceanCase ocean_case = builtin.ocean_case;
       ocean_case.set_lattice(lattice);

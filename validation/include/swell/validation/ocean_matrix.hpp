@@ -37,7 +37,8 @@ std::vector<OceanMatrixRow> run_ocean_matrix(const std::string& backend,
 
 // The lattice rows (issue 12; DESIGN.md §1 "Sampling"): every built-in case on a Korobov
 // lattice of n² points (generator by the spectral test) and on the Fibonacci lattice F_j nearest
-// n² points, over the case's patch, × {fp32, fp64}, synthesized by rank-1 lattice synthesis
+// n² points (only for backends of any size: radix2 and vulkan take powers of two), over the
+// case's patch, × {fp32, fp64}, synthesized by rank-1 lattice synthesis
 // through `fft_backend`'s 1-D transforms; the rows' backend reads "lattice:fft=NAME" and their
 // case names the lattice ("jonswap_deep @ korobov N=16384 g=(1,…)").
 std::vector<OceanMatrixRow> run_lattice_ocean_matrix(const std::string& fft_backend,
