@@ -281,6 +281,8 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
   // A lattice's N samples are reported as N×1 (one row of points in n).
   report.nx = frames.lattice ? int(frames.sampling().size()) : frames.grid.nx;
   report.ny = frames.lattice ? 1 : frames.grid.ny;
+  report.samples = frames.lattice ? frames.sampling().describe()
+                                  : fmt::format("{}×{}", report.nx, report.ny);
   for (Field field : reference::kAllFields) {
     if (ends.has(field)) report.fields.push_back(reference::field_name(field));
   }
@@ -397,9 +399,11 @@ std::string render_gate(const GateReport& report) {
   std::string out = fmt::format("swell gate: {}\n", report.subject);
   std::string fields;
   for (const auto& f : report.fields) fields += (fields.empty() ? "" : ", ") + f;
-  out += fmt::format("{}{} frame{} of {}×{}; fields: {}; unit roundoff {:.2g}\n",
+  out += fmt::format("{}{} frame{} of {}; fields: {}; unit roundoff {:.2g}\n",
                      report.case_path.empty() ? "" : "case " + report.case_path + "; ",
-                     report.frames, report.frames == 1 ? "" : "s", report.nx, report.ny,
+                     report.frames, report.frames == 1 ? "" : "s",
+                     report.samples.empty() ? fmt::format("{}×{}", report.nx, report.ny)
+                                            : report.samples,
                      fields.empty() ? "none" : fields, report.unit_roundoff);
   out += fmt::format("family-wise α = {:.3g}, shared by {} statistical checks: each at α = {:.3g}\n\n",
                      report.alpha, report.statistical_checks, report.alpha_per_check);
@@ -465,6 +469,7 @@ nlohmann::json gate_json(const GateReport& report) {
           {"frames", report.frames},
           {"nx", report.nx},
           {"ny", report.ny},
+          {"samples", report.samples},
           {"fields", report.fields},
           {"alpha", json_number(report.alpha)},
           {"alpha_per_check", json_number(report.alpha_per_check)},

@@ -33,7 +33,8 @@ struct GateOptions {
 struct GateReport {
   std::string case_path;               // the case file judged ("" when given in memory)
   std::string subject;                 // the case's one-line description
-  int frames = 0, nx = 0, ny = 0;
+  int frames = 0, nx = 0, ny = 0;  // a lattice: nx = N points, ny = 1
+  std::string samples;             // "512×512", or the lattice ("korobov N=4096 g=(1,671) over …")
   std::vector<std::string> fields;     // field names present
   double alpha = 0;                    // family-wise
   double alpha_per_check = 0;          // what each statistical check ran at
