@@ -173,8 +173,11 @@ TEST(SpaceTimeSet, FollowsTheConventionsAndMergesQZero) {
     }
     EXPECT_EQ(set.size(), expected);
     EXPECT_EQ(set.waves().size(), 2 * 224 - merged);
-    if (period == 5.0) EXPECT_GT(merged, 10u);
-    if (period == 60.0) EXPECT_EQ(merged, 0u);
+    if (period == 5.0) {
+      EXPECT_GT(merged, 10u);
+    } else {
+      EXPECT_EQ(merged, 0u);
+    }
     EXPECT_TRUE(set.mirror_symmetric());
     EXPECT_EQ(set.max_abs()[0], 7);
     EXPECT_EQ(set.grid_frames(), 2 * set.max_abs()[2] + 1);
@@ -234,6 +237,23 @@ TEST(SpaceTimeSynthesis, MatchesTheDirectSumWithExactIntegerPhases) {
     EXPECT_LE(error, bound) << lattice->describe() << " " << e.backend << " " << set.describe();
     EXPECT_GT(error, 0.0) << "compared with itself?";
   }
+  // An odd N (no Nyquist class in the c2r half spectrum): the first odd 5-smooth size with a
+  // Korobov generator.
+  const SpaceTimeSet set = SpaceTimeSet::create(c, SpaceTimeBand::grid(16));
+  std::int64_t odd = 0, a = 0;
+  for (std::int64_t n : {2025, 3375, 3645, 5625, 6075, 10125}) {
+    if (const auto found = swell::impls::find_space_time_multiplier(set, n)) {
+      odd = n;
+      a = *found;
+      break;
+    }
+  }
+  ASSERT_GT(odd, 0) << "no odd size up to 10125 admits a Korobov generator";
+  const auto lattice = std::make_shared<const RankOneLattice>(
+      swell::reference::korobov_lattice(odd, a, {200, 200, 60}));
+  const auto got = SpaceTimeSynthesizer(set, lattice).heights();
+  EXPECT_LE(relative_l2(got, direct_sum(set, *lattice)), 8 * 0x1p-53 * std::log2(double(odd)))
+      << lattice->describe();
 }
 
 // Evaluation needs no injectivity: with require_injective = false a generator that merges
@@ -353,9 +373,9 @@ TEST(SpaceTimeSynthesis, EqualsPerFrameGridSynthesisAtTheSamePoints) {
       norm += want * want;
     }
     const double relative = double(std::sqrt(error / norm));
-    // Both are fp64 syntheses of size ≤ 2^11; the grid's phases ω t are rounded in double
-    // (|ω t| ≤ 2π q_max), the lattice's are exact: 1e-12 is ~100× what either makes.
-    EXPECT_LE(relative, 1e-12) << lattice->describe() << " depth " << depth;
+    // Both are fp64 syntheses; the grid's phases ω t are rounded in double (|ω t| ≤ 2π q_max
+    // ≈ 100 rad, so ≈ 1e-14 of a radian), the lattice's are exact integers. Measured 3–4e-15.
+    EXPECT_LE(relative, 1e-13) << lattice->describe() << " depth " << depth;
     EXPECT_GT(norm, 0.0L);
   }
 }
@@ -449,16 +469,16 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Median seconds of `reps` calls of f.
-double median_seconds(int reps, const std::function<void()>& f) {
-  std::vector<double> times;
+// Best of `reps` calls of f, in seconds: the machine is shared, and the minimum is what the
+// code costs when nothing else runs.
+double best_seconds(int reps, const std::function<void()>& f) {
+  double best = 1e300;
   for (int r = 0; r < reps; ++r) {
     const auto start = std::chrono::steady_clock::now();
     f();
-    times.push_back(seconds_since(start));
+    best = std::min(best, seconds_since(start));
   }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
+  return best;
 }
 
 // Per-frame grid synthesis of the height alone, as a renderer would do it to cover the loop:
@@ -497,12 +517,45 @@ struct GridFrames {
     spectrum.assign(a.size(), 0.0);
     field.assign(std::size_t(n) * n, 0.0);
   }
-  void evolve(double t) {
+  // Frame f of F over one loop, t = f T / F: e^(−iωt) = e^(−2πi q f / F) with q = ω T / 2π an
+  // integer, so a frame needs q_max + 1 phasors (no sin/cos per wave and frame).
+  void set_loop(double period, std::int64_t frames) {
+    q.assign(omega.size(), 0);
+    for (std::size_t e = 0; e < omega.size(); ++e) {
+      q[e] = static_cast<std::int32_t>(std::llround(omega[e] * period / (2 * kPi)));
+    }
+    loop_frames = frames;
+    phasor_re.resize(std::size_t(*std::max_element(q.begin(), q.end())) + 1);
+    phasor_im.resize(phasor_re.size());
+    a_re.resize(a.size());
+    a_im.resize(a.size());
+    b_re.resize(a.size());
+    b_im.resize(a.size());
     for (std::size_t e = 0; e < a.size(); ++e) {
-      const cplx phase = std::polar(1.0, -omega[e] * t);
-      spectrum[e] = a[e] * phase + b[e] * std::conj(phase);
+      a_re[e] = a[e].real();
+      a_im[e] = a[e].imag();
+      b_re[e] = b[e].real();
+      b_im[e] = b[e].imag();
     }
   }
+  void evolve(std::int64_t f) {
+    for (std::size_t j = 0; j < phasor_re.size(); ++j) {
+      const double phase = -2 * kPi * double((std::int64_t(j) * f) % loop_frames) / double(loop_frames);
+      phasor_re[j] = std::cos(phase);
+      phasor_im[j] = std::sin(phase);
+    }
+    // a p + b conj(p) on split real arrays (as the Synthesizer keeps its waves): 2.5 ns a wave
+    // on this machine, 4× faster than the same loop on std::complex values.
+    double* out = reinterpret_cast<double*>(spectrum.data());
+    for (std::size_t e = 0; e < a_re.size(); ++e) {
+      const double pr = phasor_re[std::size_t(q[e])], pi = phasor_im[std::size_t(q[e])];
+      out[2 * e] = a_re[e] * pr - a_im[e] * pi + b_re[e] * pr + b_im[e] * pi;
+      out[2 * e + 1] = a_re[e] * pi + a_im[e] * pr + b_im[e] * pr - b_re[e] * pi;
+    }
+  }
+  std::vector<std::int32_t> q;
+  std::vector<double> phasor_re, phasor_im, a_re, a_im, b_re, b_im;
+  std::int64_t loop_frames = 1;
   void transform() { plan->execute(std::span<const cplx>(spectrum), std::span<double>(field)); }
 };
 
@@ -525,26 +578,28 @@ void measure(int n, double period, SpaceTimeSearch::Sizes sizes, std::int64_t ma
   const double plan_seconds = seconds_since(start);
   const std::int64_t points = lattice->points();
   std::vector<cplx> half(std::size_t(points / 2 + 1));
-  std::vector<double> out(std::size_t(points));
+  std::vector<double> out(static_cast<std::size_t>(points));
   synthesizer.place(half);
-  const int reps = points > (1 << 19) ? 5 : 15;
-  const double fft = median_seconds(reps, [&] {
+  const int reps = points > (1 << 19) ? 11 : 31;
+  const double fft = best_seconds(reps, [&] {
     synthesizer.transform().execute(std::span<const cplx>(half), std::span<double>(out));
   });
-  const double whole = median_seconds(reps, [&] { synthesizer.heights(out); });
+  const double whole = best_seconds(reps, [&] { synthesizer.heights(out); });
 
   const std::int64_t frames = set.grid_frames();
   GridFrames grid(c, n);
-  const double grid_fft = median_seconds(15, [&] { grid.transform(); });
-  const double grid_frame = median_seconds(15, [&] {
-    grid.evolve(1.234);
+  const double grid_fft = best_seconds(31, [&] { grid.transform(); });
+  grid.set_loop(period, frames);
+  std::int64_t next_frame = 0;
+  const double grid_frame = best_seconds(31, [&] {
+    grid.evolve(next_frame++ % frames);
     grid.transform();
   });
   swell::impls::SynthesizerOptions options;
   options.precision = swell::impls::Precision::f64;
   const swell::impls::Synthesizer six(c, options);
   std::vector<std::byte> fields(six.frame_bytes());
-  const double six_frame = median_seconds(9, [&] { six.evaluate(1.234, fields); });
+  const double six_frame = best_seconds(15, [&] { six.evaluate(1.234, fields); });
   const std::int64_t grid_points = std::int64_t(n) * n * frames;
   std::printf(
       "[space-time] %d² band, T = %g s, %s: |H| = %zu, q_max = %d, F = %lld; lattice N = %lld "
