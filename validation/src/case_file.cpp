@@ -31,8 +31,8 @@ namespace fs = std::filesystem;
 using reference::Field;
 using reference::ModelSpec;
 
-const std::vector<std::string> kSections = {"grid",      "sampling",  "time",  "physics",
-                                            "spectrum",  "spreading", "synthesis", "input"};
+const std::vector<std::string> kSections = {"grid",      "time",      "physics", "spectrum",
+                                            "spreading", "synthesis", "input",   "sampling"};
 // The parameters every frequency model takes, which a case holds once ([physics],
 // wind_dir_deg) instead of in [spectrum].
 const std::set<std::string> kCaseLevel = {"gravity", "depth", "wind_dir"};
