@@ -72,6 +72,7 @@
 #include <vector>
 
 #include "bench_support.hpp"
+#include "frame_support.hpp"
 #include "swell/impls/synthesizer.hpp"
 #include "swell/impls/transform.hpp"
 #include "swell/reference/grid.hpp"
@@ -90,18 +91,8 @@ using swell::reference::OceanCase;
 using swell::reference::RankOneLattice;
 using Clock = std::chrono::steady_clock;
 
-// CPU seconds of the calling thread, as Google Benchmark's cpu_time column.
-double thread_cpu_seconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
-}
-
-// Wall-clock seconds, as the real_time column: for device-resident backends, whose work the
-// benchmark thread only waits for.
-double wall_seconds() {
-  return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
-}
+using swell::bench::thread_cpu_seconds;
+using swell::bench::wall_seconds;
 
 constexpr double kFrameStep = 1.0 / 60;  // s between timed frames (any value would do)
 constexpr double kPatch = 200.0;         // m, both sides
@@ -175,46 +166,7 @@ struct Subject {
   }
 };
 
-// The transforms of one frame on buffers of their own (as frame_bench). Their input is zeros:
-// transform time does not depend on the values (no backend branches on data; zeros are not
-// subnormal), and an in-place inverse transform repeated on random data would grow by about N
-// per repetition until fp32 overflows.
-struct BareTransforms {
-  std::unique_ptr<Backend> backend;
-  std::vector<std::unique_ptr<Plan>> plans;
-  std::vector<std::unique_ptr<Buffer>> inputs, outputs;
-
-  BareTransforms(const std::string& impl, const std::vector<TransformSpec>& specs)
-      : backend(make_backend(impl)) {
-    for (const auto& spec : specs) {
-      plans.push_back(backend->plan(spec));
-      inputs.push_back(backend->allocate(spec.input_bytes()));
-      const std::vector<unsigned char> zeros(spec.input_bytes(), 0);
-      inputs.back()->upload(zeros.data(), zeros.size());  // touches every page
-      if (spec.placement == Placement::out_of_place) {
-        outputs.push_back(backend->allocate(spec.output_bytes()));
-      } else {
-        outputs.push_back(nullptr);
-      }
-    }
-    run();  // first touch of the outputs, outside the timing
-  }
-  // Runs them; returns the device's seconds for a device-resident backend (0 otherwise).
-  double run() const {
-    double device_seconds = 0;
-    for (std::size_t i = 0; i < plans.size(); ++i) {
-      Buffer& out = outputs[i] ? *outputs[i] : *inputs[i];
-#ifdef SWELL_HAVE_VULKAN
-      if (backend->name() == "vulkan") {
-        device_seconds += vulkan_execute_timed(*plans[i], *inputs[i], out).compute_seconds;
-        continue;
-      }
-#endif
-      plans[i]->execute(*inputs[i], out);
-    }
-    return device_seconds;
-  }
-};
+using swell::bench::BareTransforms;
 
 // A synthesizer with its output buffer, its bare transforms and its sampling's band. The
 // lattice's search and table (up to 0.3 s at 2^22 points), the amplitudes and FFTW_MEASURE
