@@ -7,6 +7,11 @@
 //                                             (korobov_lattice), N = 2^12 … 2^22
 //   frame/<impl>/<precision>/<n>              the n × n grid, n = √N for N an even power of two
 //                                             (n = 64 … 2048), registered right after its lattice
+//   lattice_one_pass/<impl>/<precision>/<N>   the same lattice with each of the synthesizer's
+//   lattice_four_step/<impl>/<precision>/<N>  two lattice transforms forced (N ≥ 2^16, host
+//                                             backends): lattice/… is the automatic choice,
+//                                             one of them; four_step_n1 and four_step_n2 give
+//                                             N = n1·n2 (0 for one pass)
 //   lattice_fibonacci/<impl>/<precision>/<N>  Fibonacci lattices N = F_j, j = 19 … 33 (4181 …
 //                                             3524578 points): backends of any size only
 //
@@ -98,6 +103,9 @@ constexpr double kFrameStep = 1.0 / 60;  // s between timed frames (any value wo
 constexpr double kPatch = 200.0;         // m, both sides
 constexpr int kLog2First = 12, kLog2Last = 22;        // lattice points 2^12 … 2^22
 constexpr int kFibonacciFirst = 19, kFibonacciLast = 33;  // F_19 = 4181 … F_33 = 3524578
+// From 2^16 points on, lattice_one_pass and lattice_four_step run both of the synthesizer's
+// lattice transforms beside the automatic choice (synthesizer.hpp).
+constexpr int kLog2Alternatives = 16;
 
 // Set when a benchmark could not run for a reason other than the backend's refusal: the exit
 // status is then 1, so the smoke test fails.
@@ -160,9 +168,10 @@ enum class Sampled { korobov, fibonacci, grid };
 struct Subject {
   Sampled kind;
   int size;
+  LatticeTransform transform = LatticeTransform::automatic;
   std::string key() const {
     const char* names[] = {"korobov", "fibonacci", "grid"};
-    return std::string(names[int(kind)]) + "/" + std::to_string(size);
+    return std::string(names[int(kind)]) + "/" + std::to_string(size) + "/" + to_string(transform);
   }
 };
 
@@ -217,6 +226,7 @@ Fixture& fixture(const std::string& impl, Precision precision, Subject subject) 
   options.backend = impl;
   options.precision = precision;
   options.threads = threads_of(impl);
+  options.lattice_transform = subject.transform;
   f->synthesizer = std::make_unique<Synthesizer>(c, options);
   f->fields.resize(f->synthesizer->frame_bytes());
   f->synthesizer->evaluate(0.0, f->fields);  // first touch, outside the timing
@@ -272,6 +282,9 @@ void run_frame(benchmark::State& state, const std::string& impl, Precision preci
     state.counters["grid_inscribed_radius"] = f->grid->inscribed_radius;
     state.counters["grid_covering_radius"] = f->grid->covering_radius;
     state.counters["lattice_s"] = f->lattice_seconds;
+    const auto [n1, n2] = f->synthesizer->four_step_factors();
+    state.counters["four_step_n1"] = n1;
+    state.counters["four_step_n2"] = n2;
   }
   state.counters["transforms_ms"] = 1e3 * transform_seconds / iterations;
   state.counters["rest_ms"] = 1e3 * (frame_seconds - transform_seconds) / iterations;
@@ -322,6 +335,13 @@ void register_all() {
         unit(benchmark::RegisterBenchmark(("lattice" + tail + std::to_string(points)).c_str(),
                                           run_frame, impl, precision,
                                           Subject{Sampled::korobov, points}));
+        if (log2 >= kLog2Alternatives && !capabilities.device_resident) {
+          for (const auto transform : {LatticeTransform::one_pass, LatticeTransform::four_step}) {
+            unit(benchmark::RegisterBenchmark(
+                ("lattice_" + to_string(transform) + tail + std::to_string(points)).c_str(),
+                run_frame, impl, precision, Subject{Sampled::korobov, points, transform}));
+          }
+        }
         if (log2 % 2 == 0) {  // the grid of equal point count, next to its lattice
           const int n = 1 << (log2 / 2);
           unit(benchmark::RegisterBenchmark(("frame" + tail + std::to_string(n)).c_str(),

@@ -322,6 +322,7 @@ class FftwBackend final : public Backend {
     c.any_size = true;
     c.size_rule = "any N ≥ 1";
     c.multi_threaded = true;
+    c.blocked_large_1d = true;
     return c;
   }
   std::unique_ptr<Plan> plan(const TransformSpec& spec) const override {

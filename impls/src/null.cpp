@@ -29,6 +29,7 @@ class NullBackend final : public Backend {
     c.any_size = true;
     c.size_rule = "any N ≥ 1";
     c.exact = false;
+    c.blocked_large_1d = true;
     return c;
   }
   std::unique_ptr<Plan> plan(const TransformSpec& spec) const override {

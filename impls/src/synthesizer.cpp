@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <numbers>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -30,6 +31,9 @@ using reference::OceanCase;
 // (∂h/∂y, λDx), (λDy, λ∂Dx/∂x), (λ∂Dy/∂y, λ∂Dx/∂y). The last three only feed J.
 constexpr int kRealFields = 8;
 constexpr int kComplexPairs = kRealFields / 2;
+// Classes of a lattice's row per assembly task: the task's scratch (24 bytes a class in fp32,
+// 32 in fp64) stays in L1/L2.
+constexpr int kLatticeBlock = 4096;
 
 std::complex<double> amplitude(const reference::DirectionalSpectrum& spectrum,
                                const OceanCase& c, int n, int m) {
@@ -59,6 +63,23 @@ Packing packing_from_string(const std::string& name) {
   if (name == "real") return Packing::real;
   if (name == "automatic") return Packing::automatic;
   throw InvalidInput("unknown packing '" + name + "'; valid: complex_pairs, real, automatic");
+}
+
+std::string to_string(LatticeTransform transform) {
+  switch (transform) {
+    case LatticeTransform::automatic: return "automatic";
+    case LatticeTransform::one_pass: return "one_pass";
+    case LatticeTransform::four_step: return "four_step";
+  }
+  return "?";
+}
+
+LatticeTransform lattice_transform_from_string(const std::string& name) {
+  if (name == "automatic") return LatticeTransform::automatic;
+  if (name == "one_pass") return LatticeTransform::one_pass;
+  if (name == "four_step") return LatticeTransform::four_step;
+  throw InvalidInput("unknown lattice transform '" + name +
+                     "'; valid: automatic, one_pass, four_step");
 }
 
 std::complex<double> initial_amplitude(const OceanCase& ocean_case, int n, int m) {
@@ -139,6 +160,10 @@ template <typename Real>
 struct RowTask {
   int width = 0;  // nx/2 + 1
   int nx = 0;
+  // The columns [begin, end) of the half row this task assembles (a grid: the whole half row;
+  // a lattice: one block of its N/2 + 1 classes, so that its scratch stays in the caches and
+  // the threads share the row), and the mirror columns nx − i of those.
+  int begin = 0, end = 0;
   bool pairs = false;
   double t = 0;
   const double* omega = nullptr;  // [width]
@@ -152,8 +177,9 @@ struct RowTask {
   Real* out = nullptr;         // row j of the first spectrum (interleaved re, im)
   Real* out_mirror = nullptr;  // pairs: row (ny − j) mod ny of the first spectrum
   std::size_t plane = 0;       // Reals from one spectrum to the next
-  double *cos_phase = nullptr, *sin_phase = nullptr;  // scratch [width]
-  Real *h_re = nullptr, *h_im = nullptr;              // scratch [width]
+  // Scratch of end − begin entries, indexed from begin.
+  double *cos_phase = nullptr, *sin_phase = nullptr;
+  Real *h_re = nullptr, *h_im = nullptr;
   const Real* field_scale = nullptr;  // [kRealFields] powers of two (State::field_scale)
 };
 
@@ -203,20 +229,22 @@ template <typename Real>
 template <typename Real, bool PerColumnKy>
 [[gnu::always_inline]] inline void assemble_row_body(const RowTask<Real>& task) {
   const int width = task.width;
-  double* __restrict c = task.cos_phase;
-  double* __restrict s = task.sin_phase;
+  const int begin = task.begin, end = task.end;
+  // The scratch arrays are indexed from `begin`.
+  double* __restrict c = task.cos_phase - begin;
+  double* __restrict s = task.sin_phase - begin;
   const double* __restrict omega = task.omega;
   const double t = task.t;
 #pragma omp simd
-  for (int i = 0; i < width; ++i) sin_cos(reference::reduced_phase(omega[i], t), s[i], c[i]);
+  for (int i = begin; i < end; ++i) sin_cos(reference::reduced_phase(omega[i], t), s[i], c[i]);
   const Real* __restrict a_re = task.a_re;
   const Real* __restrict a_im = task.a_im;
   const Real* __restrict b_re = task.b_re;
   const Real* __restrict b_im = task.b_im;
   const Real* __restrict lk = task.lambda_over_k;
   const Real* __restrict kx = task.kx;
-  Real* __restrict h_re = task.h_re;
-  Real* __restrict h_im = task.h_im;
+  Real* __restrict h_re = task.h_re - begin;
+  Real* __restrict h_im = task.h_im - begin;
   Real* __restrict out = task.out;
   const std::size_t plane = task.plane;
   const Real ky = task.ky;
@@ -230,7 +258,7 @@ template <typename Real, bool PerColumnKy>
   };
   if (!task.pairs) {
 #pragma omp simd
-    for (int i = 0; i < width; ++i) {
+    for (int i = begin; i < end; ++i) {
       Real hr, hi;
       wave(i, hr, hi);
       const auto f = field_spectra(hr, hi, kx[i], PerColumnKy ? ky_column[i] : ky, lk[i],
@@ -243,7 +271,7 @@ template <typename Real, bool PerColumnKy>
     return;
   }
 #pragma omp simd
-  for (int i = 0; i < width; ++i) {
+  for (int i = begin; i < end; ++i) {
     Real hr, hi;
     wave(i, hr, hi);
     h_re[i] = hr;
@@ -253,12 +281,15 @@ template <typename Real, bool PerColumnKy>
                 out, plane, i);
   }
   // The columns nx/2 + 1 … nx − 1 of the mirror row hold −k of columns nx − 1 … 1 here:
-  // h̃(−k) = conj(h̃(k)), and λ/|k| is the same.
+  // h̃(−k) = conj(h̃(k)), and λ/|k| is the same. This task writes those whose source column
+  // nx − i lies in [begin, end).
   Real* __restrict mirror = task.out_mirror;
   const Real ky_mirror = task.ky_mirror;
   const int nx = task.nx;
+  const int mirror_begin = std::max(width, nx - end + 1);
+  const int mirror_end = nx - std::max(begin, 1) + 1;
 #pragma omp simd
-  for (int i = width; i < nx; ++i) {
+  for (int i = mirror_begin; i < mirror_end; ++i) {
     const int source = nx - i;
     const auto f = field_spectra(h_re[source], -h_im[source], kx[i],
                                  PerColumnKy ? ky_column[i] : ky_mirror, lk[source],
@@ -285,6 +316,9 @@ struct UnpackTask {
   std::size_t count = 0;       // samples per field
   Real* fields = nullptr;      // 6 planes of count
   std::size_t begin = 0, end = 0;
+  // Samples in each plane of data: count for a whole frame; a four-step lattice frame unpacks
+  // blocks it has first transposed into natural order (its fields then start at the block).
+  std::size_t data_plane = 0;
   const Real* inverse_scale = nullptr;  // [kRealFields]: undoes State::field_scale (0: a zero field)
 };
 
@@ -297,6 +331,7 @@ template <typename Real>
   Real* __restrict dx = h + 3 * n;
   Real* __restrict dy = h + 4 * n;
   Real* __restrict jacobian = h + 5 * n;
+  const std::size_t dn = task.data_plane;
   const Real* __restrict d = task.data;
   // The synthesizer checks its own output (a non-finite value is a bug, never a written file):
   // x·0 is 0 for finite x and NaN for ±inf or NaN, so the sum is finite iff every value is.
@@ -304,9 +339,9 @@ template <typename Real>
   Real probe = 0;
   if (task.pairs) {  // (h, ∂h/∂x), (∂h/∂y, λDx), (λDy, λ∂Dx/∂x), (λ∂Dy/∂y, λ∂Dx/∂y)
     const Real* __restrict p0 = d;
-    const Real* __restrict p1 = d + 2 * n;
-    const Real* __restrict p2 = d + 4 * n;
-    const Real* __restrict p3 = d + 6 * n;
+    const Real* __restrict p1 = d + 2 * dn;
+    const Real* __restrict p2 = d + 4 * dn;
+    const Real* __restrict p3 = d + 6 * dn;
     const Real* v = task.inverse_scale;
 #pragma omp simd reduction(+ : probe)
     for (std::size_t p = task.begin; p < task.end; ++p) {
@@ -322,16 +357,16 @@ template <typename Real>
     }
   } else {
     const Real* v = task.inverse_scale;
-    const Real* __restrict dxx = d + 5 * n;
-    const Real* __restrict dyy = d + 6 * n;
-    const Real* __restrict dxy = d + 7 * n;
+    const Real* __restrict dxx = d + 5 * dn;
+    const Real* __restrict dyy = d + 6 * dn;
+    const Real* __restrict dxy = d + 7 * dn;
 #pragma omp simd reduction(+ : probe)
     for (std::size_t p = task.begin; p < task.end; ++p) {
       h[p] = d[p] * v[0];
-      sx[p] = d[n + p] * v[1];
-      sy[p] = d[2 * n + p] * v[2];
-      dx[p] = d[3 * n + p] * v[3];
-      dy[p] = d[4 * n + p] * v[4];
+      sx[p] = d[dn + p] * v[1];
+      sy[p] = d[2 * dn + p] * v[2];
+      dx[p] = d[3 * dn + p] * v[3];
+      dy[p] = d[4 * dn + p] * v[4];
       const Real xx = dxx[p] * v[5], yy = dyy[p] * v[6], xy = dxy[p] * v[7];
       jacobian[p] = (Real(1) + xx) * (Real(1) + yy) - xy * xy;
       probe += Real(0) * h[p] + Real(0) * sx[p] + Real(0) * sy[p] + Real(0) * dx[p] +
@@ -358,6 +393,52 @@ SWELL_SIMD_CLONES double unpack_range(const UnpackTask<double>& task) { return u
 Packing automatic_packing(const Backend&) { return Packing::complex_pairs; }
 
 }  // namespace
+
+// Bailey's four-step FFT of a lattice frame's 1-D inverse transforms of N = n1·n2 points
+// (D. H. Bailey, "FFTs in external or hierarchical memory", J. Supercomputing 4, 1990), on
+// the backend's own batched 1-D plans. With class m = m1 + n1·m2 and point n = n2·p1 + p2,
+//   f(n) = Σ_m1 e^(2πi m1 p1/n1) · [e^(2πi m1 p2/N) · Σ_m2 c(m1 + n1 m2) e^(2πi m2 p2/n2)]:
+// (1) for each m1 the transform of length n2 over m2 — a column of the n2 × n1 array the
+// spectrum already is — done `block` columns at a time in a scratch that stays in cache, with
+// the twiddle e^(2πi m1 p2/N) applied there; (2) for each p2 the transform of length n1 over
+// m1, a contiguous row. The result lies transposed (point n at p2·n1 + p1), and the unpack
+// transposes it back block by block. Its passes over memory are a 2-D transform's: one by
+// columns, one by rows (a one-pass 1-D plan of 2^20 points and more costs 2× the 2-D
+// transform of as many points with FFTW, 5–7× with radix2: docs/lattice.md).
+template <typename Real>
+struct FourStepTwiddles {
+  // e^(2πi e/N) = high[e >> shift] · low[e & (2^shift − 1)], two tables of about √N entries
+  // each computed in long double: the product is within 2 ulp of Real.
+  std::vector<std::complex<Real>> low, high;
+};
+
+struct FourStep {
+  int n1 = 0, n2 = 0;  // N = n1·n2: n1 the rows' length (step 2), n2 the columns' (step 1)
+  int block = 0;       // columns per step-1 batch
+  int shift = 0;
+  std::unique_ptr<Plan> columns;  // block transforms of n2, in place, contiguous
+  std::unique_ptr<Plan> rows;     // 4·n2 transforms of n1, in place on the spectra
+  FourStepTwiddles<float> twiddles32;
+  FourStepTwiddles<double> twiddles64;
+  template <typename Real>
+  const FourStepTwiddles<Real>& twiddles() const {
+    if constexpr (std::is_same_v<Real, float>) return twiddles32; else return twiddles64;
+  }
+};
+
+// From this many points on, a lattice frame's automatic transform is the four-step one where
+// it can be, on a backend whose large 1-D plans are not blocked already (radix2; measured in
+// docs/lattice.md §Cost: at 2^16 radix2's four-step wins in fp32, 2.40 against 3.53 ms, and
+// loses in fp64, 3.94 against 3.37 ms; from 2^18 it wins 1.8–2.8× in both).
+constexpr long kFourStepMinPoints = 1L << 17;
+constexpr int kFourStepComplexPlanes = 4;  // the complex pairs of one frame
+// Values of p1 per unpack band: kFourStepBand consecutive complex values of a row (128 bytes
+// in fp32) per read.
+constexpr int kFourStepBand = 16;
+// Step 1's columns per batch: radix2 transforms 16 fp32 (8 fp64) signals at once, one per
+// vector lane; FFTW's batch of 16 columns of 2048 fp32 complex values is 256 KB, in L2.
+constexpr int kFourStepBlock = 16;
+constexpr int kFourStepPrefetchRows = 16;
 
 struct Synthesizer::State {
   OceanCase ocean_case;
@@ -396,6 +477,8 @@ struct Synthesizer::State {
   // A device-resident backend's frame (device_frame.hpp), which holds the waves on the device
   // and records the transforms of `spec` into its own submission.
   std::unique_ptr<DeviceFrame> device_frame;
+  // A lattice frame's four-step transform (empty: one-pass 1-D plans, and on grids).
+  std::unique_ptr<FourStep> four_step;
   Buffer& transformed() const { return transformed_storage ? *transformed_storage : *spectra; }
 
   std::size_t real_bytes() const { return real_size(options.precision); }
@@ -445,6 +528,11 @@ struct Synthesizer::State {
   void assemble(double t) const;
   template <typename Real>
   bool unpack(std::byte* fields) const;  // false when some value is not finite
+  void make_four_step();
+  template <typename Real>
+  void run_four_step() const;
+  template <typename Real>
+  Real unpack_four_step(std::byte* fields) const;
   std::string describe_non_finite(double t, std::span<const std::byte> fields) const;
 };
 
@@ -502,8 +590,11 @@ Synthesizer::Synthesizer(OceanCase ocean_case, SynthesizerOptions options)
   // The backend's rules before the waves are computed (seconds for a large grid): a device
   // frame builds its program after them.
   s.backend->validate(spec);
+  // A four-step lattice frame needs no plan of size N (FFTW measures one for half a minute
+  // at 2^20 points).
+  if (s.lattice && !on_device) s.make_four_step();
   if (!on_device) {
-    s.plan = s.backend->plan(spec);
+    if (!s.four_step) s.plan = s.backend->plan(spec);
     if (s.backend->capabilities().device_resident) {
       s.spectra = std::make_unique<HostBuffer>(spec.input_bytes());
       s.transformed_storage = std::make_unique<HostBuffer>(spec.output_bytes());
@@ -564,6 +655,185 @@ void Synthesizer::State::make_device_frame() {
 #else
   throw InternalError("backend " + backend->name() + " is device resident in a build without Vulkan");
 #endif
+}
+
+// The factorization N = n1·n2 with n2 the largest divisor of N at most √N that the backend
+// plans as a batch of 1-D transforms, n1 = N/n2 likewise, and n2 ≥ the step-1 block (so
+// that the columns are worth batching); none for N below kFourStepMinPoints unless asked for.
+void Synthesizer::State::make_four_step() {
+  const auto choice = options.lattice_transform;
+  if (choice == LatticeTransform::one_pass) return;
+  const auto refuse = [&](const std::string& why) {
+    if (choice == LatticeTransform::four_step) {
+      throw InvalidInput(fmt::format("lattice transform four_step on {} points with {}: {}", nx,
+                                     backend->name(), why));
+    }
+  };
+  if (choice == LatticeTransform::automatic &&
+      (nx < kFourStepMinPoints || backend->capabilities().blocked_large_1d)) {
+    return;
+  }
+  if (packing != Packing::complex_pairs || spec.placement != Placement::in_place) {
+    return refuse("it needs complex pairs transformed in place");
+  }
+  if (backend->capabilities().device_resident) {
+    return refuse("a device backend would copy every batch of columns through the host");
+  }
+  const auto plans = [&](int length, int howmany) {
+    TransformSpec one = spec;
+    one.nx = length;
+    one.ny = 1;
+    one.howmany = howmany;
+    try {
+      backend->validate(one);
+      return true;
+    } catch (const InvalidInput&) {
+      return false;
+    }
+  };
+  int n2 = 0;
+  for (int d = static_cast<int>(std::sqrt(double(nx))) + 1; d >= 2; --d) {
+    if (long(d) * d <= nx && nx % d == 0 && plans(d, kFourStepBlock) &&
+        plans(nx / d, kFourStepComplexPlanes * (nx / d))) {
+      n2 = d;
+      break;
+    }
+  }
+  if (n2 < kFourStepBlock) {
+    return refuse(fmt::format("N has no factor pair n1·n2 with {} ≤ n2 ≤ √N that {} plans",
+                              kFourStepBlock, backend->name()));
+  }
+  auto f = std::make_unique<FourStep>();
+  f->n2 = n2;
+  f->n1 = nx / n2;
+  f->block = kFourStepBlock;
+  TransformSpec columns = spec;
+  columns.nx = f->n2;
+  columns.howmany = f->block;
+  f->columns = backend->plan(columns);
+  TransformSpec rows = spec;
+  rows.nx = f->n1;
+  rows.howmany = kFourStepComplexPlanes * f->n2;
+  f->rows = backend->plan(rows);
+  while ((1L << (2 * f->shift)) < long(nx)) ++f->shift;
+  const long low_size = 1L << f->shift;
+  const long high_size = (long(nx) + low_size - 1) / low_size;
+  const long double two_pi_over_n = 2 * std::numbers::pi_v<long double> / nx;
+  const auto fill = [&](auto& table) {
+    using Complex = typename std::decay_t<decltype(table.low)>::value_type;
+    using R = typename Complex::value_type;
+    table.low.resize(low_size);
+    table.high.resize(high_size);
+    for (long e = 0; e < low_size; ++e) {
+      table.low[e] = Complex(R(std::cos(two_pi_over_n * e)), R(std::sin(two_pi_over_n * e)));
+    }
+    for (long e = 0; e < high_size; ++e) {
+      const long double angle = two_pi_over_n * (e * low_size);
+      table.high[e] = Complex(R(std::cos(angle)), R(std::sin(angle)));
+    }
+  };
+  if (options.precision == Precision::f32) fill(f->twiddles32); else fill(f->twiddles64);
+  four_step = std::move(f);
+}
+
+// Steps 1 and 2 of the four-step transform on the four packed spectra, in place.
+template <typename Real>
+void Synthesizer::State::run_four_step() const {
+  using Complex = std::complex<Real>;
+  const FourStep& f = *four_step;
+  auto* data = static_cast<Complex*>(spectra->host_data());
+  const auto& tw = f.twiddles<Real>();
+  const long n = nx, mask = (1L << f.shift) - 1;
+  const int blocks_per_plane = (f.n1 + f.block - 1) / f.block;
+  const int tasks = kFourStepComplexPlanes * blocks_per_plane;
+#pragma omp parallel num_threads(options.threads)
+  {
+    HostBuffer scratch(sizeof(Complex) * std::size_t(f.block) * f.n2);
+    auto* buffer = static_cast<Complex*>(scratch.host_data());
+#pragma omp for schedule(static)
+    for (int task = 0; task < tasks; ++task) {
+      Complex* plane = data + std::size_t(task / blocks_per_plane) * n;
+      const int first = (task % blocks_per_plane) * f.block;
+      const int width = std::min(f.block, f.n1 - first);
+      // Columns first … first + width − 1 of the n2 × n1 array, each to a contiguous signal
+      // (a short last block leaves the rest of the scratch as it was: transformed, unused).
+      for (int m2 = 0; m2 < f.n2; ++m2) {
+        const Complex* row = plane + std::size_t(m2) * f.n1 + first;
+        if (m2 + kFourStepPrefetchRows < f.n2) {
+          const Complex* ahead = row + std::size_t(kFourStepPrefetchRows) * f.n1;
+          __builtin_prefetch(ahead);
+          __builtin_prefetch(ahead + width - 1);
+        }
+        for (int c = 0; c < width; ++c) buffer[std::size_t(c) * f.n2 + m2] = row[c];
+      }
+      f.columns->execute(static_cast<const void*>(buffer), static_cast<void*>(buffer));
+      // The twiddles, multiplied out by hand: std::complex's operator* goes through
+      // __mulsc3 (C's Annex G infinities) unless -ffast-math, several times slower.
+      for (int c = 0; c < width; ++c) {
+        Real* signal = reinterpret_cast<Real*>(buffer + std::size_t(c) * f.n2);
+        const long m1 = first + c;
+        long e = 0;  // m1·p2 mod N
+        for (int p2 = 0; p2 < f.n2; ++p2) {
+          const std::complex<Real> hi = tw.high[e >> f.shift], lo = tw.low[e & mask];
+          const Real wr = hi.real() * lo.real() - hi.imag() * lo.imag();
+          const Real wi = hi.real() * lo.imag() + hi.imag() * lo.real();
+          const Real xr = signal[2 * p2], xi = signal[2 * p2 + 1];
+          signal[2 * p2] = xr * wr - xi * wi;
+          signal[2 * p2 + 1] = xr * wi + xi * wr;
+          e += m1;
+          if (e >= n) e -= n;
+        }
+      }
+      for (int p2 = 0; p2 < f.n2; ++p2) {
+        Complex* row = plane + std::size_t(p2) * f.n1 + first;
+        for (int c = 0; c < width; ++c) row[c] = buffer[std::size_t(c) * f.n2 + p2];
+      }
+    }
+  }
+  f.rows->execute(static_cast<const void*>(data), static_cast<void*>(data));
+}
+
+// The unpack of a four-step frame: point n = n2·p1 + p2 lies at p2·n1 + p1 of each plane.
+// Bands of kFourStepBand values of p1 (that many runs of n2 consecutive points) are first
+// transposed into a scratch in natural order, reading kFourStepBand consecutive values of
+// each row, then unpacked as a whole frame's samples are.
+template <typename Real>
+Real Synthesizer::State::unpack_four_step(std::byte* fields) const {
+  using Complex = std::complex<Real>;
+  const FourStep& f = *four_step;
+  const auto* data = static_cast<const Complex*>(spectra->host_data());
+  const std::size_t n = std::size_t(nx);
+  const int bands = (f.n1 + kFourStepBand - 1) / kFourStepBand;
+  Real probe = 0;
+#pragma omp parallel num_threads(options.threads) reduction(+ : probe)
+  {
+    std::vector<Complex> scratch(std::size_t(kFourStepComplexPlanes) * kFourStepBand * f.n2);
+#pragma omp for schedule(static)
+    for (int band = 0; band < bands; ++band) {
+      const int first = band * kFourStepBand;
+      const int height = std::min(kFourStepBand, f.n1 - first);
+      const std::size_t band_points = std::size_t(height) * f.n2;
+      for (int plane = 0; plane < kFourStepComplexPlanes; ++plane) {
+        const Complex* in = data + plane * n;
+        Complex* out = scratch.data() + plane * band_points;
+        for (int p2 = 0; p2 < f.n2; ++p2) {
+          const Complex* row = in + std::size_t(p2) * f.n1 + first;
+          for (int r = 0; r < height; ++r) out[std::size_t(r) * f.n2 + p2] = row[r];
+        }
+      }
+      UnpackTask<Real> task;
+      task.pairs = true;
+      task.data = reinterpret_cast<const Real*>(scratch.data());
+      task.data_plane = band_points;
+      task.count = n;
+      task.fields = reinterpret_cast<Real*>(fields) + std::size_t(first) * f.n2;
+      task.begin = 0;
+      task.end = band_points;
+      task.inverse_scale = scales<Real>(true);
+      probe += unpack_range(task);
+    }
+  }
+  return probe;
 }
 
 template <typename Real>
@@ -654,6 +924,10 @@ Synthesizer::~Synthesizer() = default;
 const OceanCase& Synthesizer::ocean_case() const { return state_->ocean_case; }
 const SynthesizerOptions& Synthesizer::options() const { return state_->options; }
 Packing Synthesizer::packing() const { return state_->packing; }
+std::array<int, 2> Synthesizer::four_step_factors() const {
+  if (!state_->four_step) return {0, 0};
+  return {state_->four_step->n1, state_->four_step->n2};
+}
 
 std::vector<TransformSpec> Synthesizer::transforms_per_frame() const {
   return {state_->spec};
@@ -686,25 +960,49 @@ void Synthesizer::State::assemble(double t) const {
   const auto& kxs = kx<Real>();
   const auto& kys = ky<Real>();
   const bool pairs = packing == Packing::complex_pairs;
+  // A grid's task is one half row; a lattice's one block of its single row's classes: its
+  // scratch then stays small (a whole row's at 2^22 points is 48 MB, beyond glibc's mmap
+  // threshold, so every frame faulted in fresh zeroed pages: docs/lattice.md) and the threads
+  // share the row.
+  const int columns_per_task = lattice ? std::min(half_columns, kLatticeBlock) : half_columns;
 #pragma omp parallel num_threads(options.threads)
   {
-    std::vector<double> phase(2 * std::size_t(half_columns));
-    std::vector<Real> h(2 * std::size_t(half_columns));
+    std::vector<double> phase(2 * std::size_t(columns_per_task));
+    std::vector<Real> h(2 * std::size_t(columns_per_task));
     RowTask<Real> task;
     task.width = half_columns;
     task.nx = nx;
+    task.begin = 0;
+    task.end = half_columns;
     task.pairs = pairs;
     task.t = t;
     task.kx = kxs.data();
     task.plane = plane;
     task.cos_phase = phase.data();
-    task.sin_phase = phase.data() + half_columns;
+    task.sin_phase = phase.data() + columns_per_task;
     task.h_re = h.data();
-    task.h_im = h.data() + half_columns;
+    task.h_im = h.data() + columns_per_task;
     task.field_scale = scales<Real>(false);
-    if (lattice) task.ky_column = ky_column<Real>().data();
+    if (lattice) {
+      task.ky_column = ky_column<Real>().data();
+      task.omega = omega.data();
+      task.a_re = w.a_re.data();
+      task.a_im = w.a_im.data();
+      task.b_re = w.b_re.data();
+      task.b_im = w.b_im.data();
+      task.lambda_over_k = w.lambda_over_k.data();
+      task.out = out;
+      task.out_mirror = out;
+      const int blocks = (half_columns + kLatticeBlock - 1) / kLatticeBlock;
 #pragma omp for schedule(static)
-    for (int j = 0; j < ny; ++j) {
+      for (int b = 0; b < blocks; ++b) {
+        task.begin = b * kLatticeBlock;
+        task.end = std::min(half_columns, task.begin + kLatticeBlock);
+        assemble_lattice_row(task);
+      }
+    }
+#pragma omp for schedule(static)
+    for (int j = 0; j < (lattice ? 0 : ny); ++j) {
       const int mirror = (ny - j) % ny;
       const std::size_t e = std::size_t(j) * half_columns;
       task.omega = omega.data() + e;
@@ -717,8 +1015,7 @@ void Synthesizer::State::assemble(double t) const {
       task.ky_mirror = kys[mirror];
       task.out = out + 2 * std::size_t(j) * spectrum_columns;
       task.out_mirror = out + 2 * std::size_t(mirror) * spectrum_columns;
-      // A lattice is one row: one thread assembles it (its N/2 + 1 phases).
-      if (lattice) assemble_lattice_row(task); else assemble_row(task);
+      assemble_row(task);
     }
   }
 }
@@ -730,6 +1027,7 @@ bool Synthesizer::State::unpack(std::byte* fields) const {
   task.pairs = packing == Packing::complex_pairs;
   task.data = static_cast<const Real*>(transformed().host_data());
   task.count = count;
+  task.data_plane = count;
   task.fields = reinterpret_cast<Real*>(fields);
   task.inverse_scale = scales<Real>(true);
   // Blocks of whole rows, a few per thread.
@@ -772,6 +1070,18 @@ FrameTimings Synthesizer::evaluate_timed(double t, std::span<std::byte> fields) 
   }
   const bool f32 = s.options.precision == Precision::f32;
   if (f32) s.assemble<float>(t); else s.assemble<double>(t);
+  if (s.four_step) {
+    double probe = 0;
+    if (f32) {
+      s.run_four_step<float>();
+      probe = s.unpack_four_step<float>(fields.data());
+    } else {
+      s.run_four_step<double>();
+      probe = s.unpack_four_step<double>(fields.data());
+    }
+    if (!std::isfinite(probe)) throw InternalError(s.describe_non_finite(t, fields));
+    return timings;
+  }
   if (s.backend->capabilities().device_resident) {
     s.plan->execute(s.spectra->host_data(), s.transformed().host_data());  // a lattice
   } else {

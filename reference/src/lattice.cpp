@@ -11,6 +11,7 @@
 #include <string_view>
 #include <utility>
 
+#include "integer_arithmetic.hpp"
 #include "swell/reference/errors.hpp"
 
 namespace swell::reference {
@@ -62,26 +63,10 @@ std::int64_t centered(std::int64_t r, std::int64_t n) {
   return r > n / 2 ? r - n : r;
 }
 
-struct ExtGcd {
-  std::int64_t g, x, y;  // g = x a + y b ≥ 0
-};
-
-ExtGcd ext_gcd(std::int64_t a, std::int64_t b) {
-  std::int64_t r0 = a, r1 = b, x0 = 1, x1 = 0, y0 = 0, y1 = 1;
-  while (r1 != 0) {
-    const std::int64_t q = r0 / r1;
-    r0 = std::exchange(r1, r0 - q * r1);
-    x0 = std::exchange(x1, x0 - q * x1);
-    y0 = std::exchange(y1, y0 - q * y1);
-  }
-  if (r0 < 0) return {-r0, -x0, -y0};
-  return {r0, x0, y0};
-}
-
 // a⁻¹ mod n for gcd(a, n) = 1 (0 when n = 1).
 std::int64_t inverse_mod(std::int64_t a, std::int64_t n) {
-  const ExtGcd e = ext_gcd(floor_mod(a, n), n);
-  if (e.g != 1) bug("inverse of a non-unit");
+  const integer::Bezout e = integer::extended_gcd(floor_mod(a, n), n);
+  if (e.gcd != 1) bug("inverse of a non-unit");
   return floor_mod(e.x, n);
 }
 
@@ -95,10 +80,10 @@ BezoutMod bezout_mod(std::span<const std::int64_t> values, std::int64_t n) {
   BezoutMod out;
   out.gcd = n;  // n ≡ 0 = Σ 0·v: the invariant Σ β v ≡ G holds from the start
   for (std::size_t j = 0; j < values.size(); ++j) {
-    const ExtGcd e = ext_gcd(out.gcd, floor_mod(values[j], n));
+    const integer::Bezout e = integer::extended_gcd(out.gcd, floor_mod(values[j], n));
     for (std::size_t i = 0; i < j; ++i) out.coef[i] = mul_mod(out.coef[i], e.x, n);
     out.coef[j] = floor_mod(e.y, n);
-    out.gcd = e.g;
+    out.gcd = e.gcd;
   }
   return out;
 }

@@ -8,6 +8,7 @@
 #include <numeric>
 #include <utility>
 
+#include "integer_arithmetic.hpp"
 #include "swell/reference/errors.hpp"
 
 #if defined(__linux__)
@@ -25,28 +26,10 @@ constexpr double kMaxAspect = 1e4;
 static_assert(std::numeric_limits<long double>::digits >= 64,
               "the reduction's metric needs at least the x87 extended precision");
 
-std::int64_t floor_mod(std::int64_t value, std::int64_t n) {
-  const std::int64_t r = value % n;
-  return r < 0 ? r + n : r;
-}
+using integer::floor_mod;
 
 // (a·b) mod n for a, b in [0, n), n ≤ 2^31: the product is below 2^62.
 std::int64_t mul_mod(std::int64_t a, std::int64_t b, std::int64_t n) { return (a * b) % n; }
-
-// s·a + t·b = gcd(a, b) ≥ 0, for a, b ≥ 0; |s| ≤ b, |t| ≤ a.
-struct Bezout {
-  std::int64_t gcd, s, t;
-};
-Bezout extended_gcd(std::int64_t a, std::int64_t b) {
-  std::int64_t r0 = a, r1 = b, s0 = 1, s1 = 0, t0 = 0, t1 = 1;
-  while (r1 != 0) {
-    const std::int64_t q = r0 / r1;
-    r0 = std::exchange(r1, r0 - q * r1);
-    s0 = std::exchange(s1, s0 - q * s1);
-    t0 = std::exchange(t1, t0 - q * t1);
-  }
-  return {r0, s0, t0};
-}
 
 // The reduction works on lattice vectors with their index offsets; integer coordinates are
 // combined with overflow checks. They cannot overflow for valid input (the vectors of Gauss's
@@ -116,11 +99,11 @@ DelaunaySuperbase delaunay_superbase(std::int64_t points, std::int64_t g0, std::
   // s·g0 + t·N: s·g ≡ (e, s·g1) (mod N), so v1 = (e, s·g1 mod N) with offset s. Every vector
   // with a = 0 is m·g with m a multiple of N/e, m = (N/e)·k: m·g1 ≡ (N/e)·k·g1, and as
   // gcd(g1, e) = gcd(g0, g1, N) = 1, k = g1⁻¹ mod e gives v2 = (0, N/e). det(v1, v2) = N.
-  const Bezout b0 = extended_gcd(g0, n);
+  const integer::Bezout b0 = integer::extended_gcd(g0, n);
   const std::int64_t e = b0.gcd;
-  const std::int64_t s = floor_mod(b0.s, n);
+  const std::int64_t s = floor_mod(b0.x, n);
   SuperbaseVector v1{e, mul_mod(s, g1, n), s};
-  const std::int64_t k = e == 1 ? 0 : floor_mod(extended_gcd(g1 % e, e).s, e);
+  const std::int64_t k = e == 1 ? 0 : floor_mod(integer::extended_gcd(g1 % e, e).x, e);
   SuperbaseVector v2{0, n / e, (n / e) * k};  // (N/e)·k < N
 
   // Lagrange–Gauss reduction in the metric of the patch: |(a, c)|² ∝ lx² a² + ly² c² (the 1/N²

@@ -22,9 +22,11 @@
 #include "swell/validation/ocean_matrix.hpp"
 #include "swell/validation/periodogram.hpp"
 #include "test_engine.hpp"
+#include "test_support.hpp"
 
 namespace {
 
+using swell::impls::LatticeTransform;
 using swell::impls::Packing;
 using swell::impls::Precision;
 using swell::impls::Synthesizer;
@@ -98,20 +100,14 @@ std::vector<std::vector<long double>> direct_sum(const OceanCase& c, double t) {
   return fields;
 }
 
-double relative_l2(const std::vector<double>& got, const std::vector<long double>& want) {
-  long double error = 0, norm = 0;
-  for (std::size_t i = 0; i < got.size(); ++i) {
-    error += (got[i] - want[i]) * (got[i] - want[i]);
-    norm += want[i] * want[i];
-  }
-  return static_cast<double>(std::sqrt(error / norm));
-}
+using swell::test::relative_l2;
 
 struct Exactness {
   std::shared_ptr<const RankOneLattice> lattice;
   std::string backend;
   Precision precision;
   Packing packing;
+  LatticeTransform transform = LatticeTransform::automatic;
 };
 
 // The synthesizer's lattice frame against the direct sum: relative L2 of each field within
@@ -126,6 +122,13 @@ TEST(LatticeSynthesis, MatchesTheDirectSumWithExactIntegerPhases) {
       {korobov(256), "radix2", Precision::f64, Packing::complex_pairs},
       {korobov(256), "radix2", Precision::f32, Packing::complex_pairs},
       {korobov(255), "fftw", Precision::f64, Packing::real},
+      // Bailey's four-step transform (automatic from 2^16 points on; forced here on sizes the
+      // direct sum can afford): 4096 = 64·64 on radix2, 6000 = 80·75 and the Fibonacci
+      // N = F_18 = 2584 = 68·38 on fftw, whose twiddles e^(2πi m1 p2/N) are not powers of two.
+      {korobov(4096), "radix2", Precision::f32, Packing::complex_pairs, LatticeTransform::four_step},
+      {korobov(4096), "radix2", Precision::f64, Packing::complex_pairs, LatticeTransform::four_step},
+      {korobov(6000), "fftw", Precision::f64, Packing::complex_pairs, LatticeTransform::four_step},
+      {fibonacci(18), "fftw", Precision::f32, Packing::complex_pairs, LatticeTransform::four_step},
   };
   for (const Exactness& e : cases) {
     OceanCase c = lattice_case(e.lattice);
@@ -133,7 +136,12 @@ TEST(LatticeSynthesis, MatchesTheDirectSumWithExactIntegerPhases) {
     options.backend = e.backend;
     options.precision = e.precision;
     options.packing = e.packing;
+    options.lattice_transform = e.transform;
     const Synthesizer synthesizer(c, options);
+    if (e.transform == LatticeTransform::four_step) {
+      const auto [n1, n2] = synthesizer.four_step_factors();
+      ASSERT_EQ(std::int64_t(n1) * n2, e.lattice->points()) << e.lattice->describe();
+    }
     const double t = 1234.5;
     const auto frame = synthesizer.frame(t);
     auto want = direct_sum(c, t);
@@ -153,8 +161,67 @@ TEST(LatticeSynthesis, MatchesTheDirectSumWithExactIntegerPhases) {
       worst = std::max(worst, error);
     }
     std::cout << "[ direct sum ] " << e.lattice->describe() << " " << e.backend << " "
-              << swell::impls::to_string(e.precision) << ": largest relative L2 error " << worst
+              << swell::impls::to_string(e.precision) << " "
+              << swell::impls::to_string(e.transform) << ": largest relative L2 error " << worst
               << " (bound " << bound << ")\n";
+  }
+}
+
+// Beyond the direct sum's reach: the four-step frame against the backend's one-pass 1-D plan,
+// within the sum of both transforms' bounds (8 u log2 N each), on a power of two (radix2, the
+// automatic choice from 2^17 points on there), on 2^17 with fftw (one pass by default: its
+// large 1-D plans are blocked already) and on a 6-smooth N; the automatic choice itself; and
+// four_step refused, naming why, where N has no factor pair.
+TEST(LatticeSynthesis, FourStepAgreesWithTheOnePassTransformOnLargeLattices) {
+  struct Large {
+    std::int64_t points;
+    std::string backend;
+    Precision precision;
+    bool automatic_four_step;  // what LatticeTransform::automatic is expected to choose
+  };
+  for (const Large& l : {Large{1 << 17, "radix2", Precision::f32, true},
+                         Large{1 << 16, "radix2", Precision::f64, false},
+                         Large{1 << 17, "fftw", Precision::f64, false},
+                         Large{3 * 5 * 7 * 11 * 13 * 17, "fftw", Precision::f32, false}}) {
+    const OceanCase c = lattice_case(korobov(l.points, 800));
+    SynthesizerOptions options;
+    options.backend = l.backend;
+    options.precision = l.precision;
+    const Synthesizer automatic(c, options);
+    EXPECT_EQ(automatic.four_step_factors()[0] != 0, l.automatic_four_step)
+        << l.points << " " << l.backend;
+    options.lattice_transform = LatticeTransform::four_step;
+    const Synthesizer four_step(c, options);
+    const auto [n1, n2] = four_step.four_step_factors();
+    ASSERT_EQ(std::int64_t(n1) * n2, l.points);
+    EXPECT_LE(n2, n1);
+    options.lattice_transform = LatticeTransform::one_pass;
+    const Synthesizer one_pass(c, options);
+    EXPECT_EQ(one_pass.four_step_factors()[0], 0);
+    const double t = 77.25;
+    const auto a = four_step.frame(t), b = one_pass.frame(t);
+    const double u = l.precision == Precision::f32 ? 0x1p-24 : 0x1p-53;
+    const double bound = 2 * 8 * u * std::log2(double(l.points));
+    for (const Field field : swell::reference::kAllFields) {
+      std::vector<long double> want(b.fields.at(field).begin(), b.fields.at(field).end());
+      std::vector<double> got = a.fields.at(field);
+      if (field == Field::jacobian) {
+        for (auto& v : want) v -= 1;
+        for (auto& v : got) v -= 1;
+      }
+      const double error = relative_l2(got, want);
+      EXPECT_LE(error, bound) << l.points << " " << l.backend << " "
+                              << swell::reference::field_name(field);
+      EXPECT_GT(error, 0.0) << "the same transform twice?";
+    }
+  }
+  SynthesizerOptions forced;
+  forced.lattice_transform = LatticeTransform::four_step;
+  try {
+    Synthesizer prime(lattice_case(korobov(65537)), forced);  // a prime N
+    FAIL() << "four_step on a prime N was accepted";
+  } catch (const swell::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("no factor pair"), std::string::npos) << e.what();
   }
 }
 

@@ -29,6 +29,7 @@
 #include "swell/reference/ocean_case.hpp"
 #include "swell/validation/periodogram.hpp"
 #include "swell/validation/space_time_checks.hpp"
+#include "test_support.hpp"
 
 namespace {
 
@@ -108,14 +109,7 @@ std::vector<long double> direct_sum(const SpaceTimeSet& set, const RankOneLattic
   return out;
 }
 
-double relative_l2(const std::vector<double>& got, const std::vector<long double>& want) {
-  long double error = 0, norm = 0;
-  for (std::size_t i = 0; i < got.size(); ++i) {
-    error += (got[i] - want[i]) * (got[i] - want[i]);
-    norm += want[i] * want[i];
-  }
-  return static_cast<double>(std::sqrt(error / norm));
-}
+using swell::test::relative_l2;
 
 // The set of a case over a band, with q(k) from another dispersion ω(k): a surface whose waves
 // have the case's amplitudes but move wrongly.

@@ -1,7 +1,9 @@
 #pragma once
 // Small helpers shared by the reference test suites.
 #include <cmath>
+#include <cstddef>
 #include <limits>
+#include <vector>
 
 namespace swell::test {
 
@@ -12,6 +14,16 @@ inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Relative difference; two exact zeros (an underflowed tail) agree.
 inline double rel(double got, double want) {
   return got == want ? 0.0 : std::abs(got - want) / std::abs(want);
+}
+
+// ‖got − want‖₂ / ‖want‖₂ against a long double oracle (the direct sums of the lattice tests).
+inline double relative_l2(const std::vector<double>& got, const std::vector<long double>& want) {
+  long double error = 0, norm = 0;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    error += (got[i] - want[i]) * (got[i] - want[i]);
+    norm += want[i] * want[i];
+  }
+  return static_cast<double>(std::sqrt(error / norm));
 }
 
 // 2π in binary128 (GCC's __float128) by Machin's formula π = 16 atan(1/5) − 4 atan(1/239):

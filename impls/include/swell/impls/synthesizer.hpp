@@ -10,6 +10,7 @@
 // (h, ∂h/∂x, ∂h/∂y, λDx, λDy and the three λ∂D/∂x terms of J) are computed either as four
 // complex transforms, two real fields packed per transform (a + ib), or as eight c2r transforms;
 // docs/synthesis.md records which is faster on which backend.
+#include <array>
 #include <complex>
 #include <cstdint>
 #include <memory>
@@ -46,11 +47,23 @@ struct FrameTimings {
   double transforms_seconds = 0;
 };
 
+// How a lattice frame computes its 1-D transforms of size N (docs/lattice.md §Cost):
+// one_pass is the backend's own 1-D plan; four_step factors N = n1·n2 and runs n1 transforms
+// of n2 (with the twiddles e^(2πi m1 p2 / N) applied in cache), then n2 transforms of n1 —
+// Bailey's four-step FFT, whose passes over memory are a 2-D transform's; automatic chooses
+// four_step from 2^17 points on, where N factors into two sizes the backend plans, on a host
+// backend with complex pairs whose own large 1-D plans are not blocked already
+// (Capabilities::blocked_large_1d: FFTW's are). Grids ignore it.
+enum class LatticeTransform { automatic, one_pass, four_step };
+std::string to_string(LatticeTransform transform);
+LatticeTransform lattice_transform_from_string(const std::string& name);
+
 struct SynthesizerOptions {
   std::string backend = "fftw";  // any registered backend, with options ("fftw:threads=2")
   Precision precision = Precision::f32;
   Packing packing = Packing::automatic;
   int threads = 1;               // for the spectrum assembly (OpenMP)
+  LatticeTransform lattice_transform = LatticeTransform::automatic;
 };
 
 class Synthesizer {
@@ -63,6 +76,9 @@ class Synthesizer {
   const reference::OceanCase& ocean_case() const;
   const SynthesizerOptions& options() const;
   Packing packing() const;  // the packing actually used
+  // A lattice frame's factorization N = n1·n2 of the four-step transform; {0, 0} when its
+  // transforms are the backend's one-pass 1-D plans (and on grids).
+  std::array<int, 2> four_step_factors() const;
   // The transforms of one frame (for benchmarks: frame time over bare transform time).
   std::vector<TransformSpec> transforms_per_frame() const;
 
