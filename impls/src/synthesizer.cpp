@@ -428,8 +428,9 @@ struct FourStep {
 
 // From this many points on, a lattice frame's automatic transform is the four-step one where
 // it can be, on a backend whose large 1-D plans are not blocked already (radix2; measured in
-// docs/lattice.md §Cost: at 2^16 radix2's four-step wins in fp32, 2.40 against 3.53 ms, and
-// loses in fp64, 3.94 against 3.37 ms; from 2^18 it wins 1.8–2.8× in both).
+// docs/lattice.md §Measured: at 2^16 radix2's four-step won in fp32 in two runs, 2.40 against
+// 3.53 ms and 2.13 against 4.24, and in fp64 lost once and won once, 3.94 against 3.37 ms and
+// 4.35 against 4.99; from 2^18 on it wins 1.8–2.7× in both).
 constexpr long kFourStepMinPoints = 1L << 17;
 constexpr int kFourStepComplexPlanes = 4;  // the complex pairs of one frame
 // Values of p1 per unpack band: kFourStepBand consecutive complex values of a row (128 bytes

@@ -47,7 +47,7 @@ struct FrameTimings {
   double transforms_seconds = 0;
 };
 
-// How a lattice frame computes its 1-D transforms of size N (docs/lattice.md §Cost):
+// How a lattice frame computes its 1-D transforms of size N (docs/lattice.md §Synthesis):
 // one_pass is the backend's own 1-D plan; four_step factors N = n1·n2 and runs n1 transforms
 // of n2 (with the twiddles e^(2πi m1 p2 / N) applied in cache), then n2 transforms of n1 —
 // Bailey's four-step FFT, whose passes over memory are a 2-D transform's; automatic chooses

@@ -106,8 +106,8 @@ struct Capabilities {
   bool device_resident = false;   // buffers live on a device
   // Its own 1-D plans of sizes beyond the caches are already blocked (FFTW's), so a lattice
   // frame runs them in one pass rather than through the synthesizer's four-step transform,
-  // which pays only where they are not (radix2: 1.8–2.5× faster from 2^17 points on,
-  // docs/lattice.md §Cost). null's copy is no transform to block.
+  // which pays only where they are not (radix2: 1.8–2.7× faster from 2^18 points on,
+  // docs/lattice.md §Measured). null's copy is no transform to block.
   bool blocked_large_1d = false;
   std::string size_rule;          // "any N ≥ 1", "powers of two"
 };
