@@ -22,6 +22,8 @@ Action add_synth_command(CLI::App& app);
 Action add_fit_command(CLI::App& app);
 Action add_gate_command(CLI::App& app);
 Action add_lattice_command(CLI::App& app);
+Action add_bench_command(CLI::App& app);
+Action add_report_command(CLI::App& app);
 
 // Writes JSON to FILE, or to standard output for "-".
 void write_json(const std::string& destination, const nlohmann::json& document);

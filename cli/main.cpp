@@ -72,11 +72,17 @@ int main(int argc, char** argv) {
   actions["gate"] = swell::cli::add_gate_command(*gate);
   auto* lattice = app.add_subcommand("lattice", "a rank-1 lattice: generator, merits, band and wave vectors");
   actions["lattice"] = swell::cli::add_lattice_command(*lattice);
+  auto* bench = app.add_subcommand("bench", "run the benchmark suites and keep their results with the machine context");
+  actions["bench"] = swell::cli::add_bench_command(*bench);
+  auto* report = app.add_subcommand("report", "turn swell bench results into a report with figures, or compare two runs");
+  actions["report"] = swell::cli::add_report_command(*report);
 
   // CLI11 says only "A subcommand is required" for a misspelt one; name it instead.
   if (argc > 1 && argv[1][0] != '-' && !actions.count(argv[1])) {
-    std::cerr << "swell: error: unknown subcommand '" << argv[1]
-              << "'; valid: spectrum, check, fft, synth, fit, gate (run 'swell --help' for usage)\n";
+    std::string valid;
+    for (auto* sub : app.get_subcommands({})) valid += (valid.empty() ? "" : ", ") + sub->get_name();
+    std::cerr << "swell: error: unknown subcommand '" << argv[1] << "'; valid: " << valid
+              << " (run 'swell --help' for usage)\n";
     return 2;
   }
   try {

@@ -6,7 +6,8 @@ SWELL_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 SWELL_BUILD_DIR="${SWELL_BUILD_DIR:-$SWELL_ROOT/build}"
 
 # Every Debian 12 package swell builds, tests or runs with. The dependency check in
-# cmake/SwellDependencies.cmake names the same packages when one is missing. The last line is
+# cmake/SwellDependencies.cmake names the same packages when one is missing (gnuplot-nox, which
+# draws `swell report`'s figures at run time, is not a build dependency). The last line is
 # scripts/sanitize's: clang, its sanitizer and libFuzzer runtimes (only recommended by clang, so
 # named here) and its OpenMP.
 SWELL_PACKAGES=(
@@ -16,6 +17,7 @@ SWELL_PACKAGES=(
   libvkfft-dev glslang-dev spirv-tools
   libboost-math-dev nlohmann-json3-dev libcli11-dev libfmt-dev libtomlplusplus-dev
   librandom123-dev
+  gnuplot-nox
   clang libclang-rt-14-dev libomp-14-dev
 )
 

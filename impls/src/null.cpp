@@ -1,7 +1,12 @@
 // null: copies the input to the output and transforms nothing. Timing it measures the harness's
-// own overhead (buffers, dispatch, memory traffic of one read and one write).
+// own overhead (buffers, dispatch, memory traffic of one read and one write). With the option
+// delay_us=D every execute also spins D µs on the steady clock: a backend known to be slower,
+// for the comparison tests of `swell report --against`.
 #include <algorithm>
+#include <chrono>
+#include <cstdlib>
 #include <cstring>
+#include <string>
 
 #include "backends.hpp"
 
@@ -10,18 +15,27 @@ namespace {
 
 class NullPlan final : public Plan {
  public:
-  using Plan::Plan;
+  NullPlan(const TransformSpec& spec, long delay_us) : Plan(spec), delay_us_(delay_us) {}
   void execute(const void* in, void* out) const override {
+    if (delay_us_ > 0) {  // a spin, not a sleep: the delay then shows in CPU time too
+      const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(delay_us_);
+      while (std::chrono::steady_clock::now() < until) {
+      }
+    }
     const std::size_t in_bytes = spec().input_bytes(), out_bytes = spec().output_bytes();
     const std::size_t copied = std::min(in_bytes, out_bytes);
     if (in != out) std::memmove(out, in, copied);
     if (out_bytes > copied) std::memset(static_cast<char*>(out) + copied, 0, out_bytes - copied);
   }
   using Plan::execute;
+
+ private:
+  long delay_us_;
 };
 
 class NullBackend final : public Backend {
  public:
+  explicit NullBackend(long delay_us) : delay_us_(delay_us) {}
   std::string name() const override { return "null"; }
   Capabilities capabilities() const override {
     Capabilities c;
@@ -34,14 +48,28 @@ class NullBackend final : public Backend {
   }
   std::unique_ptr<Plan> plan(const TransformSpec& spec) const override {
     validate(spec);
-    return std::make_unique<NullPlan>(spec);
+    return std::make_unique<NullPlan>(spec, delay_us_);
   }
+
+ private:
+  long delay_us_;
 };
 
 }  // namespace
 
-std::unique_ptr<Backend> make_null_backend(const BackendOptions&) {
-  return std::make_unique<NullBackend>();
+// SWELL_NULL_DELAY_US gives the delay when the name gives none: a benchmark then keeps its
+// name ("null") while it slows down, so that two runs compare benchmark by benchmark.
+std::unique_ptr<Backend> make_null_backend(const BackendOptions& options) {
+  long delay = options.delay_us;
+  if (const char* env = std::getenv("SWELL_NULL_DELAY_US"); delay == 0 && env && *env) {
+    char* end = nullptr;
+    delay = std::strtol(env, &end, 10);
+    if (*end != '\0' || delay < 0 || delay > 10'000'000) {
+      throw InvalidInput(std::string("SWELL_NULL_DELAY_US='") + env +
+                         "' must be a whole number of microseconds 0…10000000");
+    }
+  }
+  return std::make_unique<NullBackend>(delay);
 }
 
 }  // namespace swell::impls
