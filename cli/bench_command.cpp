@@ -76,9 +76,11 @@ fs::path bench_directory(const std::string& given) {
   return own_directory().parent_path() / "bench";  // build/cli/swell → build/bench
 }
 
-// A child process with its stdout read line by line; stderr passes through.
+// A child process with its stdout read line by line; its stderr goes to `stderr_file` (Google
+// Benchmark prints its context there) or, when that is empty, passes through.
 int run_child(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env,
-              const std::function<void(const std::string&)>& on_line) {
+              const std::function<void(const std::string&)>& on_line,
+              const std::string& stderr_file = "") {
   int pipe_fds[2];
   if (pipe(pipe_fds) != 0) throw InternalError("pipe failed");
   const pid_t child = fork();
@@ -87,6 +89,13 @@ int run_child(const std::vector<std::string>& argv, const std::map<std::string, 
     dup2(pipe_fds[1], STDOUT_FILENO);
     close(pipe_fds[0]);
     close(pipe_fds[1]);
+    if (!stderr_file.empty()) {
+      const int fd = open(stderr_file.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+      if (fd >= 0) {
+        dup2(fd, STDERR_FILENO);
+        close(fd);
+      }
+    }
     for (const auto& [key, value] : env) setenv(key.c_str(), value.c_str(), 1);
     std::vector<char*> args;
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
@@ -243,10 +252,18 @@ int run_suite(const Selection& s, const fs::path& binary, const fs::path& out, i
                                    "--benchmark_format=console", "--benchmark_color=false"};
   if (o.min_time > 0) argv.push_back(fmt::format("--benchmark_min_time={}", o.min_time));
   const std::set<std::string> names(s.names.begin(), s.names.end());
-  return run_child(argv, child_environment(o), [&](const std::string& line) {
+  const std::string log = out.string() + ".stderr.log";
+  const int status = run_child(argv, child_environment(o), [&](const std::string& line) {
     const std::string first = line.substr(0, line.find(' '));
     if (names.count(first)) progress.step(s.suite + " " + first);
-  });
+  }, log);
+  if (status != 0) {
+    std::ifstream in(log);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    std::cerr << "\n" << binary.string() << " said (" << log << "):\n"
+              << (text.size() > 4000 ? text.substr(text.size() - 4000) : text) << "\n";
+  }
+  return status;
 }
 
 nlohmann::json measure_accuracy(const Selection& fft, Progress& progress) {
@@ -462,15 +479,16 @@ Action add_report_command(CLI::App& app) {
   auto o = std::make_shared<reports::ReportOptions>();
   auto against = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
-  o->threshold = reports::default_threshold();
   app.add_option("DIR", *dir, "a folder written by swell bench")->required();
   app.add_option("--against", *against, "another swell bench folder to compare with");
   app.add_option("--out", *out, "report folder (default DIR/report)");
-  app.add_option("--threshold", o->threshold, "least relative change of the median that counts as faster or slower")->capture_default_str();
+  auto* threshold = app.add_option("--threshold", o->threshold,
+                                   "least relative change of the median that counts as faster or slower "
+                                   "(default 0.35 for separate runs, 0.10 for an interleaved pair)");
   app.add_option("--alpha", o->alpha, "significance level of the U test")->capture_default_str();
   app.add_option("--gnuplot", o->gnuplot, "gnuplot program (PNG figures); missing: data and scripts only")->capture_default_str();
-  return [dir, o, against, out] {
-    if (!(o->threshold > 0 && o->threshold < 10)) {
+  return [dir, o, against, out, threshold] {
+    if (threshold->count() > 0 && !(o->threshold > 0 && o->threshold < 10)) {
       throw InvalidInput(fmt::format("--threshold {}: a relative change in (0, 10), e.g. 0.1 for 10 %", o->threshold));
     }
     o->bench_dir = *dir;

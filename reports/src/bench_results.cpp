@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
+#include <regex>
 #include <sstream>
 
 #include "swell/reference/errors.hpp"
@@ -108,9 +110,14 @@ BenchmarkName parse_benchmark_name(const std::string& run_name) {
 BenchmarkFile load_benchmark_file(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw InvalidInput("cannot read benchmark results " + file.string());
+  // Google Benchmark writes a non-finite statistic as a bare NaN or inf (the coefficient of
+  // variation of a counter that is 0 in every repetition), which JSON has no word for: null.
+  const std::string raw((std::istreambuf_iterator<char>(in)), {});
+  static const std::regex non_finite(R"((:\s*)-?(NaN|nan|inf|Infinity)\b)");
+  const std::string text = std::regex_replace(raw, non_finite, "$1null");
   nlohmann::json document;
   try {
-    document = nlohmann::json::parse(in);
+    document = nlohmann::json::parse(text);
   } catch (const std::exception& e) {
     throw InvalidInput("benchmark results " + file.string() + " are not JSON: " + e.what());
   }

@@ -166,6 +166,7 @@ TEST_F(ReportCli, ARunAgainstItselfHasNoSignificantChange) {
   EXPECT_EQ(c["faster"], 0);
   EXPECT_EQ(c["slower"], 0);
   EXPECT_DOUBLE_EQ(c["geometric_mean_ratio"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(c["threshold"].get<double>(), 0.35);  // separately made runs
 }
 
 // null takes well under 10 µs at 64² and 128²; spinning 200 µs makes it 20× slower or more,
@@ -189,6 +190,31 @@ TEST_F(ReportCli, ASlowedBackendIsSignificantlySlowerAndTheOtherWayFaster) {
   c = read(root / "faster" / "report.json")["comparison"];
   EXPECT_EQ(c["faster"], 4);
   if (gnuplot_present()) EXPECT_TRUE(fs::exists(root / "faster" / "figures" / "comparison_ratios.png"));
+}
+
+// Interleaved runs: one repetition of each build in turn, a round file per repetition on
+// both sides, merged by the report; the pair is judged with the interleaved threshold (0.10).
+TEST_F(ReportCli, InterleavedRunsAlternateAndUseTheirThreshold) {
+  const std::string bench_dir = SWELL_BENCH_BINARY_DIR;
+  const auto run = swell("bench --suite fft --impl null --sizes 64 --precision fp32 --repetitions 3 "
+                         "--min-time 0.002 --progress none --no-accuracy --out " + (root / "ia").string() +
+                         " --interleave " + bench_dir + " --other-out " + (root / "ib").string(), 300);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  for (const char* side : {"ia", "ib"}) {
+    for (int round = 1; round <= 3; ++round) {
+      EXPECT_TRUE(fs::exists(root / side / "bench" / ("fft.round000" + std::to_string(round) + ".json"))) << side;
+    }
+  }
+  const auto report = swell("report " + (root / "ia").string() + " --against " + (root / "ib").string() +
+                            " --out " + (root / "interleaved").string());
+  ASSERT_EQ(report.exit_code, 0) << report.output;
+  const json c = read(root / "interleaved" / "report.json")["comparison"];
+  EXPECT_DOUBLE_EQ(c["threshold"].get<double>(), 0.10);
+  ASSERT_EQ(c["rows"].size(), 2u);  // null × {c2c, c2r} at 64²
+  for (const auto& row : c["rows"]) {
+    EXPECT_EQ(row["repetitions"], 3);
+    EXPECT_NE(row["warning"].get<std::string>(), "") << "3 repetitions must be warned about";
+  }
 }
 
 TEST_F(ReportCli, BadOptionsExit2NamingWhatWasWrong) {

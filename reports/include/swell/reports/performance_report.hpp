@@ -28,12 +28,13 @@ struct ReportOptions {
   // A change counts as faster or slower only when p < alpha and the ratio of medians is
   // beyond 1 ± threshold (docs in reports/README.md §Comparisons: the default comes from the
   // drift measured between identical runs on this machine).
-  double threshold = 0.0;            // 0: kDefaultThreshold
+  double threshold = 0.0;            // 0: 0.35 for separate runs, 0.10 for an interleaved pair
   double alpha = 0.05;
   std::string gnuplot = "gnuplot";   // the program; "" never renders
 };
 
-// The ratio of medians beyond which a significant change counts (see reports/README.md).
+// The ratio of medians beyond which a significant change counts between separately made runs
+// (see reports/README.md; an interleaved pair's default is 0.10).
 double default_threshold();
 
 // The fewest repetitions Google Benchmark's compare.py trusts for its U test.
