@@ -1,7 +1,7 @@
 // null: copies the input to the output and transforms nothing. Timing it measures the harness's
-// own overhead (buffers, dispatch, memory traffic of one read and one write). With the option
-// delay_us=D every execute also spins D µs on the steady clock: a backend known to be slower,
-// for the comparison tests of `swell report --against`.
+// own overhead (buffers, dispatch, memory traffic of one read and one write). With
+// SWELL_NULL_DELAY_US=D every execute also spins D µs on the steady clock: a backend known to be
+// slower under the same benchmark names, for the comparison tests of `swell report --against`.
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
@@ -57,11 +57,9 @@ class NullBackend final : public Backend {
 
 }  // namespace
 
-// SWELL_NULL_DELAY_US gives the delay when the name gives none: a benchmark then keeps its
-// name ("null") while it slows down, so that two runs compare benchmark by benchmark.
-std::unique_ptr<Backend> make_null_backend(const BackendOptions& options) {
-  long delay = options.delay_us;
-  if (const char* env = std::getenv("SWELL_NULL_DELAY_US"); delay == 0 && env && *env) {
+std::unique_ptr<Backend> make_null_backend(const BackendOptions&) {
+  long delay = 0;
+  if (const char* env = std::getenv("SWELL_NULL_DELAY_US"); env && *env) {
     char* end = nullptr;
     delay = std::strtol(env, &end, 10);
     if (*end != '\0' || delay < 0 || delay > 10'000'000) {

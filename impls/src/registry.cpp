@@ -52,9 +52,6 @@ std::unique_ptr<Backend> make_backend(const std::string& name_and_options) {
       if ((key == "device" || key == "subgroups") && name != "vulkan") {
         throw InvalidInput("backend option " + key + " is for vulkan, not " + name);
       }
-      if (key == "delay_us" && name != "null") {
-        throw InvalidInput("backend option delay_us is for null, not " + name);
-      }
       if (key == "planner" && !value.empty()) {
         options.planner = value;
       } else if (key == "threads") {
@@ -82,19 +79,6 @@ std::unique_ptr<Backend> make_backend(const std::string& name_and_options) {
                              "' must be a Vulkan device index 0…255 (see `vulkaninfo --summary`)");
         }
         options.device = device;
-      } else if (key == "delay_us") {
-        std::size_t used = 0;
-        long delay = -1;
-        try {
-          delay = std::stol(value, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used != value.size() || value.empty() || delay < 0 || delay > 10'000'000) {
-          throw InvalidInput("backend option delay_us='" + value +
-                             "' must be a whole number of microseconds 0…10000000");
-        }
-        options.delay_us = delay;
       } else if (key == "subgroups") {
         if (value != "on" && value != "off") {
           throw InvalidInput("backend option subgroups='" + value + "' must be on or off");
@@ -103,8 +87,7 @@ std::unique_ptr<Backend> make_backend(const std::string& name_and_options) {
       } else {
         throw InvalidInput("unknown backend option '" + item + "' in '" + name_and_options +
                            "'; valid: planner=estimate|measure|patient|exhaustive (fftw), "
-                           "threads=N (fftw, radix2), device=N and subgroups=on|off (vulkan), "
-                           "delay_us=D (null)");
+                           "threads=N (fftw, radix2), device=N and subgroups=on|off (vulkan)");
       }
       if (comma == std::string::npos) break;
       start = comma + 1;

@@ -414,7 +414,6 @@ struct FourStepTwiddles {
 
 struct FourStep {
   int n1 = 0, n2 = 0;  // N = n1·n2: n1 the rows' length (step 2), n2 the columns' (step 1)
-  int block = 0;       // columns per step-1 batch
   int shift = 0;
   std::unique_ptr<Plan> columns;  // block transforms of n2, in place, contiguous
   std::unique_ptr<Plan> rows;     // 4·n2 transforms of n1, in place on the spectra
@@ -707,10 +706,9 @@ void Synthesizer::State::make_four_step() {
   auto f = std::make_unique<FourStep>();
   f->n2 = n2;
   f->n1 = nx / n2;
-  f->block = kFourStepBlock;
   TransformSpec columns = spec;
   columns.nx = f->n2;
-  columns.howmany = f->block;
+  columns.howmany = kFourStepBlock;
   f->columns = backend->plan(columns);
   TransformSpec rows = spec;
   rows.nx = f->n1;
@@ -745,17 +743,17 @@ void Synthesizer::State::run_four_step() const {
   auto* data = static_cast<Complex*>(spectra->host_data());
   const auto& tw = f.twiddles<Real>();
   const long n = nx, mask = (1L << f.shift) - 1;
-  const int blocks_per_plane = (f.n1 + f.block - 1) / f.block;
+  const int blocks_per_plane = (f.n1 + kFourStepBlock - 1) / kFourStepBlock;
   const int tasks = kFourStepComplexPlanes * blocks_per_plane;
 #pragma omp parallel num_threads(options.threads)
   {
-    HostBuffer scratch(sizeof(Complex) * std::size_t(f.block) * f.n2);
+    HostBuffer scratch(sizeof(Complex) * std::size_t(kFourStepBlock) * f.n2);
     auto* buffer = static_cast<Complex*>(scratch.host_data());
 #pragma omp for schedule(static)
     for (int task = 0; task < tasks; ++task) {
       Complex* plane = data + std::size_t(task / blocks_per_plane) * n;
-      const int first = (task % blocks_per_plane) * f.block;
-      const int width = std::min(f.block, f.n1 - first);
+      const int first = (task % blocks_per_plane) * kFourStepBlock;
+      const int width = std::min(kFourStepBlock, f.n1 - first);
       // Columns first … first + width − 1 of the n2 × n1 array, each to a contiguous signal
       // (a short last block leaves the rest of the scratch as it was: transformed, unused).
       for (int m2 = 0; m2 < f.n2; ++m2) {

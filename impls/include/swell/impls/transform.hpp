@@ -118,9 +118,6 @@ struct BackendOptions {
   int threads = 1;
   int device = -1;       // vulkan: index of the Vulkan device; −1 chooses (docs/vulkan.md)
   bool subgroups = true;  // vulkan: the subgroup-shuffle kernel where the device allows it
-  // null: busy-waits this long in every execute, a backend deliberately slower by a known
-  // amount (the tests of `swell report --against` use "null:delay_us=200").
-  long delay_us = 0;
 };
 
 class Backend {

@@ -33,10 +33,6 @@ struct ReportOptions {
   std::string gnuplot = "gnuplot";   // the program; "" never renders
 };
 
-// The ratio of medians beyond which a significant change counts between separately made runs
-// (see reports/README.md; an interleaved pair's default is 0.10).
-double default_threshold();
-
 // The fewest repetitions Google Benchmark's compare.py trusts for its U test.
 inline constexpr int kRecommendedRepetitions = 9;
 
