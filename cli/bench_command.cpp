@@ -25,6 +25,7 @@
 #endif
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "swell/impls/transform.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reports/bench_results.hpp"
@@ -121,48 +122,6 @@ int run_child(const std::vector<std::string>& argv, const std::map<std::string, 
   waitpid(child, &status, 0);
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
-
-std::string duration(double seconds) {
-  if (!std::isfinite(seconds) || seconds < 0) return "?";
-  const long s = std::lround(seconds);
-  return s >= 3600 ? fmt::format("{}h{:02}m", s / 3600, s / 60 % 60)
-         : s >= 60 ? fmt::format("{}m{:02}s", s / 60, s % 60)
-                   : fmt::format("{}s", s);
-}
-
-// Progress on stderr: a line rewritten in place on a terminal, a plain line every few seconds
-// otherwise, with the time left estimated from the pace so far.
-class Progress {
- public:
-  Progress(const std::string& mode, long total) : total_(total) {
-    terminal_ = mode == "bar" || (mode == "auto" && isatty(STDERR_FILENO));
-    quiet_ = mode == "none";
-  }
-  void step(const std::string& what) {
-    ++done_;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    const double left = done_ > 0 ? elapsed / double(done_) * double(total_ - done_) : NAN;
-    const std::string text = fmt::format("swell bench: {}/{} ({:.0f} %), {} elapsed, about {} left — {}",
-                                         done_, total_, 100.0 * double(done_) / double(total_),
-                                         duration(elapsed), duration(left), what);
-    if (quiet_) return;
-    if (terminal_) {
-      std::cerr << "\r\033[K" << text << std::flush;
-    } else if (elapsed - last_line_ >= 5 || done_ == total_) {
-      std::cerr << text << "\n";
-      last_line_ = elapsed;
-    }
-  }
-  void finish() {
-    if (terminal_ && !quiet_) std::cerr << "\n";
-  }
-
- private:
-  long total_ = 0, done_ = 0;
-  bool terminal_ = false, quiet_ = false;
-  double last_line_ = -1e9;
-  Clock::time_point start_ = Clock::now();
-};
 
 std::string regex_escape(const std::string& text) {
   std::string out;
@@ -410,7 +369,7 @@ int run_bench(const BenchOptions& o) {
   }
   const std::string started = fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::time(nullptr)));
   const nlohmann::json context = reports::machine_context(vulkan_loader_version(), vulkan_device_line());
-  Progress progress(o.progress, total);
+  Progress progress("swell bench", o.progress, total);
   int failures = 0;
   for (const auto& s : selections) {
     if (o.interleave.empty()) {

@@ -24,6 +24,7 @@ Action add_gate_command(CLI::App& app);
 Action add_lattice_command(CLI::App& app);
 Action add_bench_command(CLI::App& app);
 Action add_report_command(CLI::App& app);
+Action add_sweep_command(CLI::App& app);
 
 // Writes JSON to FILE, or to standard output for "-".
 void write_json(const std::string& destination, const nlohmann::json& document);

@@ -74,6 +74,8 @@ int main(int argc, char** argv) {
   actions["lattice"] = swell::cli::add_lattice_command(*lattice);
   auto* bench = app.add_subcommand("bench", "run the benchmark suites and keep their results with the machine context");
   actions["bench"] = swell::cli::add_bench_command(*bench);
+  auto* sweep = app.add_subcommand("sweep", "tuning experiments: varied case keys × seeds, their statistics and fits (mpirun for many machines)");
+  actions["sweep"] = swell::cli::add_sweep_command(*sweep);
   auto* report = app.add_subcommand("report", "turn swell bench results into a report with figures, or compare two runs");
   actions["report"] = swell::cli::add_report_command(*report);
 

@@ -49,6 +49,10 @@ if(SWELL_WITH_VULKAN)
   swell_require("Vulkan headers and loader" libvulkan-dev Vulkan_FOUND)
   swell_require("glslc (GLSL to SPIR-V compiler)" glslc Vulkan_glslc_FOUND)
 endif()
+if(SWELL_WITH_MPI)
+  find_package(MPI QUIET COMPONENTS CXX)
+  swell_require("MPI (Open MPI, for swell sweep under mpirun)" "openmpi-bin libopenmpi-dev" MPI_CXX_FOUND)
+endif()
 # The VkFFT anchor benchmark is optional: a missing piece only marks it unavailable, with why.
 include(SwellVkFFT)
 

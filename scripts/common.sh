@@ -9,7 +9,8 @@ SWELL_BUILD_DIR="${SWELL_BUILD_DIR:-$SWELL_ROOT/build}"
 # cmake/SwellDependencies.cmake names the same packages when one is missing (gnuplot-nox, which
 # draws `swell report`'s figures at run time, is not a build dependency). The last line is
 # scripts/sanitize's: clang, its sanitizer and libFuzzer runtimes (only recommended by clang, so
-# named here) and its OpenMP.
+# named here) and its OpenMP. openmpi-bin and libopenmpi-dev: swell sweep under mpirun (the
+# default build is the MPI one; its tests run mpirun with 1 and 2 ranks).
 SWELL_PACKAGES=(
   build-essential cmake pkg-config
   libfftw3-dev libgtest-dev libgmock-dev libbenchmark-dev libceres-dev libopenimageio-dev
@@ -18,6 +19,7 @@ SWELL_PACKAGES=(
   libboost-math-dev nlohmann-json3-dev libcli11-dev libfmt-dev libtomlplusplus-dev
   librandom123-dev
   gnuplot-nox
+  openmpi-bin libopenmpi-dev
   clang libclang-rt-14-dev libomp-14-dev
 )
 

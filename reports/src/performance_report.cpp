@@ -1,8 +1,5 @@
 #include "swell/reports/performance_report.hpp"
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -14,6 +11,7 @@
 #include "swell/reference/errors.hpp"
 #include "swell/reports/bench_results.hpp"
 #include "swell/reports/comparison_statistics.hpp"
+#include "swell/reports/figures.hpp"
 
 namespace swell::reports {
 namespace {
@@ -119,116 +117,6 @@ json row_json(const Row& r) {
     row["precision"] = n.precision;
   }
   return row;
-}
-
-// ------------------------------------------------------------------ figures (gnuplot)
-
-struct Series {
-  std::string title;
-  std::vector<std::pair<double, double>> points;  // sorted by x
-  bool dashed = false;
-};
-
-struct Figure {
-  std::string stem, title, xlabel, ylabel, description;
-  bool log_x = true, log_y = true;
-  bool points_only = false;
-  std::vector<Series> series;
-};
-
-// Runs gnuplot on `script` in `dir`; returns "" on success or what went wrong.
-std::string run_gnuplot(const std::string& program, const fs::path& dir, const std::string& script) {
-  const std::string err_file = (dir / (script + ".log")).string();
-  const pid_t child = fork();
-  if (child < 0) return "fork failed";
-  if (child == 0) {
-    if (chdir(dir.c_str()) != 0) _exit(126);
-    FILE* err = std::freopen(err_file.c_str(), "w", stderr);
-    (void)err;
-    execlp(program.c_str(), program.c_str(), script.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  int status = 0;
-  waitpid(child, &status, 0);
-  std::ifstream log(err_file);
-  std::stringstream text;
-  text << log.rdbuf();
-  log.close();
-  std::error_code ignored;
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
-    fs::remove(err_file, ignored);
-    return "";
-  }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return program + " could not be started";
-  return fmt::format("{} exited with status {}: {}", program, WIFEXITED(status) ? WEXITSTATUS(status) : -1,
-                     text.str());
-}
-
-bool program_found(const std::string& program) {
-  if (program.empty()) return false;
-  if (program.find('/') != std::string::npos) return access(program.c_str(), X_OK) == 0;
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "");
-  for (std::string d; std::getline(dirs, d, ':');) {
-    if (!d.empty() && access((fs::path(d) / program).c_str(), X_OK) == 0) return true;
-  }
-  return false;
-}
-
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
-// Writes <stem>.dat and <stem>.gp into dir; renders <stem>.png when gnuplot runs.
-// Returns the figure's entry for report.json.
-json write_figure(const Figure& figure, const fs::path& dir, const std::string& gnuplot,
-                  bool render, std::vector<std::string>& problems) {
-  std::ofstream dat(dir / (figure.stem + ".dat"));
-  dat << "# " << figure.title << "\n# x: " << figure.xlabel << "\n# y: " << figure.ylabel
-      << "\n# one block per series (gnuplot's index), in the order of the .gp's plot command\n";
-  std::ostringstream plot;
-  int index = 0;
-  for (const auto& series : figure.series) {
-    if (series.points.empty()) continue;
-    dat << "\n\n# " << series.title << "\n";
-    for (const auto& [x, y] : series.points) dat << fmt::format("{:.9g} {:.9g}\n", x, y);
-    plot << (index ? ", \\\n     " : "plot ") << quoted(figure.stem + ".dat") << " index " << index
-         << (series.dashed ? " with lines dt 2 lw 1.5"
-             : figure.points_only ? " with points pt 7"
-                                  : " with linespoints pt 7 ps 0.6")
-         << " title " << quoted(series.title);
-    ++index;
-  }
-  dat.close();
-  std::ofstream gp(dir / (figure.stem + ".gp"));
-  gp << "# " << figure.title << " — written by `swell report`; edit and run `gnuplot "
-     << figure.stem << ".gp` here to restyle\n"
-     << "set terminal pngcairo size 960,600 noenhanced font ',10'\n"
-     << "set output " << quoted(figure.stem + ".png") << "\n"
-     << "set title " << quoted(figure.title) << "\n"
-     << "set xlabel " << quoted(figure.xlabel) << "\nset ylabel " << quoted(figure.ylabel) << "\n"
-     << (figure.log_x ? "set logscale x 2\n" : "") << (figure.log_y ? "set logscale y\n" : "")
-     << "set grid\nset key outside right top\n";
-  if (index == 0) {
-    gp << "set label 1 'no data' at graph 0.5, 0.5 center\nunset logscale\nplot [0:1][0:1] NaN notitle\n";
-  } else {
-    gp << plot.str() << "\n";
-  }
-  gp.close();
-  json entry = {{"png", figure.stem + ".png"}, {"data", figure.stem + ".dat"},
-                {"script", figure.stem + ".gp"}, {"title", figure.title},
-                {"description", figure.description}, {"rendered", false}};
-  if (render) {
-    const std::string problem = run_gnuplot(gnuplot, dir, figure.stem + ".gp");
-    if (problem.empty()) {
-      entry["rendered"] = true;
-    } else {
-      problems.push_back(figure.stem + ".png: " + problem);
-    }
-  }
-  return entry;
 }
 
 std::string series_key(const BenchmarkName& n) {
@@ -600,8 +488,8 @@ json write_performance_report(const ReportOptions& options) {
              "the dashed lines are 1 ± the threshold.",
              false, true, true, sorted_series(ratio_points)};
     if (position > 0) {
-      f.series.push_back({fmt::format("1 + {}", threshold), {{1, 1 + threshold}, {double(position), 1 + threshold}}, true});
-      f.series.push_back({fmt::format("1 / (1 + {})", threshold), {{1, 1 / (1 + threshold)}, {double(position), 1 / (1 + threshold)}}, true});
+      f.series.push_back({fmt::format("1 + {}", threshold), {{1, 1 + threshold}, {double(position), 1 + threshold}}, true, {}});
+      f.series.push_back({fmt::format("1 / (1 + {})", threshold), {{1, 1 / (1 + threshold)}, {double(position), 1 / (1 + threshold)}}, true, {}});
     }
     figure(f);
   }
