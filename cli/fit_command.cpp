@@ -1,5 +1,9 @@
 // swell fit --input DIR_OR_PATTERN [--input …] --case FILE [--sigma] [--frame F]
 //           [--interval profile|wald] [--json FILE|-]
+// swell fit --spectrum FILE [--summary FILE] [--dof NU] [--json FILE|-] [--plot FILE.png]
+//
+// The second form fits JONSWAP to every hour of an NDBC buoy spectrum (docs/buoy_fit.md); see
+// run_buoy_fit below.
 //
 // Fits JONSWAP (Hs, Tp, γ, and with --sigma σa, σb) to the height field of frames by maximum
 // Whittle likelihood (docs/fit.md) and prints each estimate with its standard error and 95 %
@@ -17,13 +21,20 @@
 // a 95 % interval misses 5 % of the time (calibrated over seeds in swell_fit_tests).
 #include <fmt/format.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 
 #include "commands.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/sampling_validity.hpp"
+#include "swell/validation/buoy_fit.hpp"
+#include "swell/validation/buoy_spectrum.hpp"
 #include "swell/validation/case_file.hpp"
 #include "swell/validation/frame_io.hpp"
 #include "swell/validation/jonswap_fit.hpp"
@@ -42,6 +53,9 @@ struct FitOptions {
   int frame = 0;
   std::string interval = "profile";
   std::string json;
+  // The buoy form.
+  std::string spectrum, summary, plot;
+  double dof = validation::BuoyFitOptions{}.dof;
 };
 
 // One realization: a `swell synth` directory (read with its own case file, whose grid the fit
@@ -192,6 +206,351 @@ int run_fit(const FitOptions& o) {
   return 0;
 }
 
+// ---------------------------------------------------------------- swell fit --spectrum
+
+// One hour of the buoy form: what was measured, what was fitted.
+struct BuoyRow {
+  validation::BuoyHour time;
+  const validation::BuoySpectrumRecord* spectrum = nullptr;
+  const validation::BuoySummaryRecord* summary = nullptr;
+  double hs_moments = NAN, hs_rounding = NAN, tp_peak = NAN;
+  double wvht = NAN, dominant_period = NAN, apd = NAN;
+  std::string dominant_source;  // "SwP" or "WWP": the period of the larger of SwH and WWH
+  std::optional<bool> wvht_agrees;
+  std::optional<validation::BuoyFit> fit;
+  std::string fit_error;        // why an hour has no fit (no energy, too few bands)
+};
+
+// Runs gnuplot on `script` inside `dir`; "" on success, else what went wrong. (The same as the
+// report's figures do; kept here because this figure is a two-panel multiplot with interval
+// bars, which their single-panel Figure does not draw.)
+std::string render_gnuplot(const fs::path& dir, const std::string& script) {
+  const std::string log = (dir / (script + ".log")).string();
+  const pid_t child = fork();
+  if (child < 0) return "fork failed";
+  if (child == 0) {
+    if (chdir(dir.c_str()) != 0) _exit(126);
+    if (!std::freopen(log.c_str(), "w", stderr)) _exit(126);
+    execlp("gnuplot", "gnuplot", script.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  std::error_code ignored;
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+    fs::remove(log, ignored);
+    return "";
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return "gnuplot could not be started";
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return fmt::format("gnuplot exited with status {}: {}",
+                     WIFEXITED(status) ? WEXITSTATUS(status) : -1, text);
+}
+
+// <stem>.dat and <stem>.gp beside <stem>.png: Hs (WVHT, 4√m0, fitted with its 95 % interval)
+// and Tp (peak band, the summary's dominant period, fitted with its interval) over the record.
+std::string write_buoy_plot(const std::string& png, const std::vector<BuoyRow>& rows,
+                            const std::string& title) {
+  const fs::path path(png);
+  if (path.extension() != ".png") {
+    throw InvalidInput("--plot " + png + ": the figure is a PNG; give a name ending in .png");
+  }
+  // Absolute: gnuplot runs inside it, and its log is opened after the chdir.
+  const fs::path dir = fs::absolute(path.has_parent_path() ? path.parent_path() : fs::path("."));
+  std::error_code error;
+  fs::create_directories(dir, error);
+  const std::string stem = path.stem().string();
+  const double t0 = rows.front().time.hours_since_2000();
+  std::ofstream dat(dir / (stem + ".dat"));
+  if (!dat) throw InvalidInput("--plot " + png + ": cannot write " + (dir / (stem + ".dat")).string());
+  dat << "# " << title << " — written by `swell fit --spectrum`\n"
+      << "# day hs_wvht hs_moments hs_fit hs_lo hs_hi flagged tp_peak_band tp_dominant tp_fit tp_lo "
+         "tp_hi  (m, s; NaN: missing; lo/hi: 95 % profile-likelihood interval)\n";
+  auto v = [](double x) { return std::isfinite(x) ? fmt::format("{:.6g}", x) : std::string("NaN"); };
+  for (const auto& r : rows) {
+    const double day = (r.time.hours_since_2000() - t0) / 24.0;
+    const bool has = r.fit.has_value();
+    dat << fmt::format("{:.4f} {} {} {} {} {} {} {} {} {} {} {}\n", day, v(r.wvht), v(r.hs_moments),
+                       v(has ? r.fit->hs.value : NAN), v(has ? r.fit->hs.ci95_low : NAN),
+                       v(has ? r.fit->hs.ci95_high : NAN), has && r.fit->misfit.flagged ? 1 : 0,
+                       v(r.tp_peak), v(r.dominant_period), v(has ? r.fit->tp.value : NAN),
+                       v(has ? r.fit->tp.ci95_low : NAN), v(has ? r.fit->tp.ci95_high : NAN));
+  }
+  dat.close();
+  std::ofstream gp(dir / (stem + ".gp"));
+  const std::string d = "'" + stem + ".dat'";
+  gp << "# " << title << " — written by `swell fit --spectrum`; edit and run `gnuplot " << stem
+     << ".gp` here to restyle\n"
+     << "set terminal pngcairo size 1100,800 noenhanced font ',10'\n"
+     << "set output '" << stem << ".png'\n"
+     << "set multiplot layout 2,1 title '" << title << "'\n"
+     << "set grid\nset key outside right top\nset xlabel 'days from " << rows.front().time.iso()
+     << "'\n"
+     << "set ylabel 'Hs [m]'\n"
+     << "plot " << d << " using 1:($7==0?$4:NaN):5:6 with yerrorbars pt 7 ps 0.5 lc rgb '#1f77b4' "
+        "title 'fitted JONSWAP Hs, 95 % interval', \\\n"
+     << "     " << d << " using 1:($7==1?$4:NaN) with points pt 6 ps 0.6 lc rgb '#1f77b4' "
+        "title 'fitted Hs, hour flagged (misfit)', \\\n"
+     << "     " << d << " using 1:3 with lines lw 1.5 lc rgb '#2ca02c' title '4 sqrt(m0) of the bands', \\\n"
+     << "     " << d << " using 1:2 with steps lw 1 lc rgb '#d62728' title 'WVHT (summary, 0.1 m)'\n"
+     << "set ylabel 'period [s]'\n"
+     << "plot " << d << " using 1:($7==0?$10:NaN):11:12 with yerrorbars pt 7 ps 0.5 lc rgb '#1f77b4' "
+        "title 'fitted JONSWAP Tp, 95 % interval', \\\n"
+     << "     " << d << " using 1:($7==1?$10:NaN) with points pt 6 ps 0.6 lc rgb '#1f77b4' "
+        "title 'fitted Tp, hour flagged (misfit)', \\\n"
+     << "     " << d << " using 1:8 with steps lw 1.5 lc rgb '#2ca02c' title 'Tp of the peak band', \\\n"
+     << "     " << d << " using 1:9 with points pt 2 ps 0.6 lc rgb '#d62728' "
+        "title 'dominant period (SwP or WWP)'\n"
+     << "unset multiplot\n";
+  gp.close();
+  return render_gnuplot(dir, stem + ".gp");
+}
+
+nlohmann::json misfit_json(const validation::BuoyMisfit& m) {
+  return {{"deviance", json_number(m.deviance)},
+          {"deviance_dof", m.deviance_dof},
+          {"deviance_p", json_number(m.deviance_p)},
+          {"second_peak", m.second_peak},
+          {"second_peak_frequency", m.second_peak ? json_number(m.second_peak_frequency) : nullptr},
+          {"second_peak_energy_fraction",
+           m.second_peak ? json_number(m.second_peak_energy_fraction) : nullptr},
+          {"second_peak_z", m.second_peak ? json_number(m.second_peak_z) : nullptr},
+          {"flagged", m.flagged},
+          {"reason", m.reason}};
+}
+
+// Fits every hour of an NDBC spectral-density file; with --summary, pairs each hour with the
+// summary's (by hour: spectra at :50, summaries at :40) and compares 4√m0 with WVHT. Exit 0 when
+// every hour with energy was fitted and converged, 1 when one did not converge, 2 on bad input.
+// A flagged hour (one JONSWAP cannot describe it) is information, not failure.
+int run_buoy_fit(const FitOptions& o) {
+  require(std::isfinite(o.dof) && o.dof > 0, "--dof", "finite and > 0", o.dof);
+  const auto spectra = validation::read_ndbc_spectral_density(o.spectrum);
+  std::vector<validation::BuoySummaryRecord> summaries;
+  if (!o.summary.empty()) summaries = validation::read_ndbc_summary(o.summary);
+  const auto bands = validation::spectral_bands(spectra.frequency);
+  validation::BuoyFitOptions options;
+  options.dof = o.dof;
+  const auto paired = validation::pair_by_hour(spectra, summaries);
+
+  std::vector<BuoyRow> rows;
+  int not_converged = 0;
+  for (const auto& p : paired) {
+    BuoyRow r;
+    r.time = p.spectrum->time;
+    r.spectrum = p.spectrum;
+    r.summary = p.summary;
+    const auto& s = p.spectrum->density;
+    r.hs_moments = validation::moment_significant_height(s, bands);
+    r.hs_rounding = validation::moment_height_rounding(s, bands, options.quantum);
+    r.tp_peak = validation::peak_band_period(s, bands);
+    if (p.summary) {
+      r.wvht = p.summary->wvht;
+      r.apd = p.summary->average_period;
+      const double swh = p.summary->swell_height, wwh = p.summary->wind_sea_height;
+      const bool swell = std::isfinite(swh) && (!std::isfinite(wwh) || swh >= wwh);
+      r.dominant_source = swell ? "SwP" : "WWP";
+      r.dominant_period = swell ? p.summary->swell_period : p.summary->wind_sea_period;
+      if (!std::isfinite(r.dominant_period)) {  // e.g. SwH 0.0 with SwP "MM": take the other
+        r.dominant_source = swell ? "WWP" : "SwP";
+        r.dominant_period = swell ? p.summary->wind_sea_period : p.summary->swell_period;
+      }
+      if (!std::isfinite(r.dominant_period)) r.dominant_source.clear();
+      if (std::isfinite(r.wvht) && std::isfinite(r.hs_moments)) {
+        r.wvht_agrees = validation::height_agrees_with_wvht(r.hs_moments, r.wvht, s, bands,
+                                                            options.quantum);
+      }
+    }
+    try {
+      r.fit = validation::fit_buoy_spectrum(s, bands, options);
+      if (!r.fit->converged) ++not_converged;
+    } catch (const InvalidInput& e) {
+      // One hour without energy does not make the file bad input; it is reported.
+      r.fit_error = fmt::format("{} line {}: {}", o.spectrum, p.spectrum->line, e.what());
+    }
+    rows.push_back(std::move(r));
+  }
+
+  // The summary of the week.
+  int paired_hours = 0, agree = 0, flagged = 0, fitted = 0, second_peaks = 0;
+  double largest_difference = 0;
+  std::string largest_at;
+  for (const auto& r : rows) {
+    if (r.summary) ++paired_hours;
+    if (r.wvht_agrees) {
+      agree += *r.wvht_agrees;
+      const double d = std::abs(r.hs_moments - r.wvht);
+      if (d >= largest_difference) largest_difference = d, largest_at = r.time.iso();
+    }
+    if (r.fit) {
+      ++fitted;
+      flagged += r.fit->misfit.flagged;
+      second_peaks += r.fit->misfit.second_peak;
+    }
+  }
+  int compared = 0;
+  for (const auto& r : rows) compared += r.wvht_agrees.has_value();
+
+  if (!o.json.empty()) {
+    nlohmann::json hours = nlohmann::json::array();
+    for (const auto& r : rows) {
+      nlohmann::json h = {
+          {"time", r.time.iso()},
+          {"spectrum_line", r.spectrum->line},
+          {"summary_line", r.summary ? nlohmann::json(r.summary->line) : nlohmann::json(nullptr)},
+          {"separation_frequency", json_number(r.spectrum->separation_frequency)},
+          {"hs_moments", json_number(r.hs_moments)},
+          {"hs_moments_rounding", json_number(r.hs_rounding)},
+          {"tp_peak_band", json_number(r.tp_peak)},
+          {"wvht", json_number(r.wvht)},
+          {"wvht_difference", json_number(r.hs_moments - r.wvht)},
+          {"wvht_agrees", r.wvht_agrees ? nlohmann::json(*r.wvht_agrees) : nlohmann::json(nullptr)},
+          {"dominant_period", json_number(r.dominant_period)},
+          {"dominant_period_source",
+           r.dominant_source.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.dominant_source)},
+          {"average_period", json_number(r.apd)}};
+      if (r.fit) {
+        h["fit"] = {{"hs", estimate_json(r.fit->hs)},
+                    {"tp", estimate_json(r.fit->tp)},
+                    {"gamma", estimate_json(r.fit->gamma)}};
+        h["converged"] = r.fit->converged;
+        h["misfit"] = misfit_json(r.fit->misfit);
+        h["bands_used"] = r.fit->bands_used;
+        h["censored_bands"] = r.fit->censored_bands;
+        h["window_low"] = json_number(r.fit->window_low);
+        h["bands_below_window"] = r.fit->bands_below_window;
+        h["negative_log_likelihood"] = json_number(r.fit->negative_log_likelihood);
+      } else {
+        h["fit"] = nullptr;
+        h["fit_error"] = r.fit_error;
+      }
+      hours.push_back(std::move(h));
+    }
+    const nlohmann::json document = {
+        {"spectrum_file", o.spectrum},
+        {"summary_file", o.summary.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.summary)},
+        {"band_convention", validation::band_convention_name(bands.convention)},
+        {"dof_per_0_01_hz", json_number(options.dof)},
+        {"quantum", json_number(options.quantum)},
+        {"sigma_a", options.sigma_a},
+        {"sigma_b", options.sigma_b},
+        {"deviance_alpha", validation::kDevianceAlpha},
+        {"hours", hours},
+        {"summary",
+         {{"hours", rows.size()},
+          {"paired", paired_hours},
+          {"wvht_compared", compared},
+          {"wvht_agree", agree},
+          {"wvht_largest_difference", compared ? json_number(largest_difference) : nullptr},
+          {"fitted", fitted},
+          {"flagged", flagged},
+          {"second_peak", second_peaks},
+          {"not_converged", not_converged}}}};
+    write_json(o.json, document);
+  }
+  if (o.json != "-") {
+    fmt::print(
+        "swell fit --spectrum: JONSWAP (Hs, Tp, γ; σa {}, σb {}) by maximum likelihood, band "
+        "values χ²_ν/ν with ν = {:g} per 0.01 Hz; {}\n"
+        "{} hours; bands: {} ({} from {:.4f} to {:.4f} Hz)\n\n",
+        options.sigma_a, options.sigma_b, options.dof, o.spectrum, rows.size(),
+        validation::band_convention_name(bands.convention), bands.centre.size(),
+        bands.centre.front(), bands.centre.back());
+    fmt::print("{:<17} {:>5} {:>4} {:>6} {:>22} {:>5} {:>4} {:>22} {:>18} {:>4} {:>7}  {}\n", "hour",
+               "4√m0", "WVHT", "Δ", "fitted Hs [95 %]", "Tp pk", "dom", "fitted Tp [95 %]",
+               "γ [95 %]", "APD", "p(dev)", "misfit");
+    auto interval = [](const validation::Estimate& e, int precision) {
+      return fmt::format("{:.{}f} [{:.{}f}, {:.{}f}]{}", e.value, precision, e.ci95_low, precision,
+                         e.ci95_high, precision, e.calibrated ? " " : "*");
+    };
+    for (const auto& r : rows) {
+      const std::string dominant =
+          std::isfinite(r.dominant_period) ? fmt::format("{:.1f}", r.dominant_period) : "—";
+      const std::string difference =
+          r.wvht_agrees ? fmt::format("{:+.3f}{}", r.hs_moments - r.wvht, *r.wvht_agrees ? "" : "!")
+                        : "—";
+      const std::string wvht = std::isfinite(r.wvht) ? fmt::format("{:.1f}", r.wvht) : "—";
+      if (!r.fit) {
+        fmt::print("{:<17} {:>5.2f} {:>4} {:>6}  no fit: {}\n", r.time.iso(), r.hs_moments, wvht,
+                   difference, r.fit_error);
+        continue;
+      }
+      const auto& f = *r.fit;
+      std::string misfit = f.misfit.second_peak
+                               ? fmt::format("2nd peak {:.1f} s ({:.0f} %)",
+                                             1 / f.misfit.second_peak_frequency,
+                                             100 * f.misfit.second_peak_energy_fraction)
+                               : std::string();
+      if (f.misfit.deviance_p < validation::kDevianceAlpha) {
+        misfit += misfit.empty() ? "deviance" : ", deviance";
+      }
+      fmt::print("{:<17} {:>5.2f} {:>4} {:>6} {:>22} {:>5.1f} {:>4} {:>22} {:>18} {:>4} {:>7.1e}  {}\n",
+                 r.time.iso(), r.hs_moments, wvht, difference, interval(f.hs, 2), r.tp_peak,
+                 dominant, interval(f.tp, 2), interval(f.gamma, 1),
+                 std::isfinite(r.apd) ? fmt::format("{:.1f}", r.apd) : "—", f.misfit.deviance_p,
+                 misfit);
+    }
+    fmt::print(
+        "\n*: no calibrated 95 % interval (the hour is flagged, or the profile does not close); "
+        "the JSON gives the reason.\n"
+        "dom: the summary's SwP or WWP, whichever belongs to the larger of SwH and WWH (the summary "
+        "has no DPD); APD: its average period.\n");
+    if (!o.summary.empty()) {
+      fmt::print(
+          "\nWVHT: {} of {} hours paired with the summary; 4√m0 agrees with WVHT (within 0.05 m "
+          "and the 0.001 m²/Hz rounding of S) in {} of {}; largest |4√m0 − WVHT| = {:.3f} m ({})\n",
+          paired_hours, rows.size(), agree, compared, largest_difference, largest_at);
+    }
+    fmt::print(
+        "misfit: {} of {} fitted hours flagged ({} with a second significant peak; deviance "
+        "p < {:g} otherwise)\n",
+        flagged, fitted, second_peaks, validation::kDevianceAlpha);
+  }
+  if (!o.plot.empty()) {
+    const std::string problem =
+        write_buoy_plot(o.plot, rows, fmt::format("{}: fitted JONSWAP against measured Hs and Tp",
+                                                  fs::path(o.spectrum).filename().string()));
+    if (!problem.empty()) {
+      fmt::print(stderr, "swell: the figure's .dat and .gp are written, its PNG is not: {}\n", problem);
+    } else if (o.json != "-") {
+      fmt::print("figure: {} (with its .dat and .gp)\n", o.plot);
+    }
+  }
+  if (not_converged > 0) {
+    fmt::print(stderr, "swell: numerical failure: the fit did not converge in {} hour(s)\n",
+               not_converged);
+    return 1;
+  }
+  return 0;
+}
+
+// Which form was asked for; a mix, or neither, is bad input with the rule in the message.
+int run_fit_command(const FitOptions& o) {
+  const bool frames = !o.inputs.empty() || !o.case_file.empty();
+  if (!o.spectrum.empty()) {
+    if (frames) {
+      throw InvalidInput(
+          "--spectrum (a buoy spectrum) cannot be combined with --input/--case (frames): give "
+          "one of the two forms");
+    }
+    if (o.sigma || o.frame != 0 || o.interval != "profile") {
+      throw InvalidInput("--sigma, --frame and --interval belong to the frames form (--input); "
+                         "--spectrum fits Hs, Tp, γ with profile-likelihood intervals");
+    }
+    return run_buoy_fit(o);
+  }
+  if (!o.summary.empty() || !o.plot.empty()) {
+    throw InvalidInput("--summary and --plot belong to the buoy form: give --spectrum FILE");
+  }
+  if (o.inputs.empty() || o.case_file.empty()) {
+    throw InvalidInput(
+        "swell fit needs --input PATTERN and --case FILE (frames), or --spectrum FILE (an NDBC "
+        "buoy spectrum)");
+  }
+  return run_fit(o);
+}
+
 }  // namespace
 
 Action add_fit_command(CLI::App& app) {
@@ -199,10 +558,8 @@ Action add_fit_command(CLI::App& app) {
   app.add_option("--input", o->inputs,
                  "one realization: a directory written by swell synth, or a frame file pattern "
                  "(frame_%04d.exr); repeat for more independent realizations")
-      ->required()
       ->take_all();
-  app.add_option("--case", o->case_file, "case file (docs/case_files.md) whose spectrum is fitted")
-      ->required();
+  app.add_option("--case", o->case_file, "case file (docs/case_files.md) whose spectrum is fitted");
   app.add_flag("--sigma", o->sigma, "also fit the peak widths σa and σb");
   app.add_option("--frame", o->frame, "which frame of each realization (default 0)");
   app.add_option("--interval", o->interval,
@@ -210,6 +567,18 @@ Action add_fit_command(CLI::App& app) {
                  "to 20 peak wavelengths) or wald (estimate ± 1.96 se)")
       ->check(CLI::IsMember({"profile", "wald"}));
   app.add_option("--json", o->json, "write JSON to FILE, or - for standard output");
+  app.add_option("--spectrum", o->spectrum,
+                 "instead of frames: an NDBC spectral-density file (.data_spec), every hour "
+                 "fitted (docs/buoy_fit.md)");
+  app.add_option("--summary", o->summary,
+                 "with --spectrum: the NDBC hourly summary (.spec), paired by hour; compares "
+                 "4√m0 with WVHT and prints the buoy's periods");
+  app.add_option("--dof", o->dof,
+                 "with --spectrum: degrees of freedom of a 0.01 Hz band (ν_j = dof·Δf_j/0.01 Hz); "
+                 "default 24, NDBC's 20-minute WPM record (TD 96-01)");
+  app.add_option("--plot", o->plot,
+                 "with --spectrum: a PNG of fitted against measured Hs and Tp over the record "
+                 "(gnuplot; .dat and .gp beside it)");
   app.footer(
       "Fits Hs, Tp, γ (with --sigma also σa, σb) of an exactly normalized JONSWAP spectrum to the "
       "periodogram of the height field by maximum Whittle likelihood (Ceres); 95 % intervals are "
@@ -220,8 +589,13 @@ Action add_fit_command(CLI::App& app) {
       "on bad input. JSON: {fit: {hs: {value, ci95 (null if not calibrated), se, method, "
       "calibrated, effective_ordinates[, ci95_uncalibrated, reason]}, tp, gamma[, sigma_a, "
       "sigma_b]}, converged, wave_vectors, realizations, interval, peak_wavelengths, "
-      "peak_wave_vectors, truth, negative_log_likelihood, iterations}. See docs/fit.md.");
-  return [o] { return run_fit(*o); };
+      "peak_wave_vectors, truth, negative_log_likelihood, iterations}. See docs/fit.md.\n"
+      "With --spectrum FILE [--summary FILE] instead: every hour of an NDBC buoy spectrum, "
+      "fitted with the band values' χ²_ν/ν law (values under 0.01 m²/Hz as the intervals they "
+      "were rounded from), 4√m0 against WVHT, and a misfit flag (a second significant peak, or "
+      "a deviance beyond its χ² reference at p < 0.001); text, --json (hours[…], summary) and "
+      "--plot. See docs/buoy_fit.md.");
+  return [o] { return run_fit_command(*o); };
 }
 
 }  // namespace swell::cli
