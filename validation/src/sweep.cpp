@@ -597,7 +597,33 @@ struct PointSummary {
   std::map<std::string, double> truth, bias, coverage;
   std::map<std::string, int> calibrated;
   int converged = 0;
+  // What the point's spectrum gives on its grid (band-limited: Σ μ(k) over the grid's k ≠ 0,
+  // each at ω(|k|)): hs = 4 √m0, tm01 = 2π m0/m1, tm02 = 2π √(m0/m2). The measured means
+  // scatter about these; the spectrum's untruncated moments (swell spectrum) differ from them
+  // by the tail beyond the grid's Nyquist wave number.
+  double expected_hs = kNaN, expected_tm01 = kNaN, expected_tm02 = kNaN;
 };
+
+void expected_moments(const reference::OceanCase& ocean, PointSummary& p) {
+  const auto& grid = ocean.grid;
+  const auto mu = expected_periodogram(*ocean.directional_spectrum(), grid);
+  double m[3] = {0, 0, 0};
+  for (int row = 0; row < grid.ny; ++row) {
+    const int wy = row <= grid.ny / 2 ? row : row - grid.ny;
+    for (int i = 0; i < grid.nx; ++i) {
+      const int wx = i <= grid.nx / 2 ? i : i - grid.nx;
+      if (wx == 0 && wy == 0) continue;
+      const double mu_k = mu[std::size_t(row) * grid.nx + i];
+      const double omega = ocean.omega(std::hypot(wx * 2 * kPi / grid.lx, wy * 2 * kPi / grid.ly));
+      m[0] += mu_k;
+      m[1] += mu_k * omega;
+      m[2] += mu_k * omega * omega;
+    }
+  }
+  p.expected_hs = 4 * std::sqrt(m[0]);
+  p.expected_tm01 = m[1] > 0 ? 2 * kPi * m[0] / m[1] : kNaN;
+  p.expected_tm02 = m[2] > 0 ? 2 * kPi * std::sqrt(m[0] / m[2]) : kNaN;
+}
 
 }  // namespace
 
@@ -669,8 +695,10 @@ std::vector<std::string> write_outputs(const SweepSpec& spec, std::vector<RunRow
         for (const auto* r : point_rows) values.push_back(r->statistics.at(name));
         p.statistics[name] = summarize(values);
       }
+      const Point point = make_point(spec, index);
+      expected_moments(point.case_file.ocean, p);
       if (spec.fit) {
-        const auto truth = case_jonswap_parameters(make_point(spec, index).case_file.ocean);
+        const auto truth = case_jonswap_parameters(point.case_file.ocean);
         p.truth = {{"hs", truth.hs}, {"tp", truth.tp}, {"gamma", truth.gamma}};
         for (const auto* r : point_rows) p.converged += r->fit_converged;
         for (const auto& name : fit_names) {
@@ -699,7 +727,7 @@ std::vector<std::string> write_outputs(const SweepSpec& spec, std::vector<RunRow
     std::ofstream csv(dir / "points.csv");
     csv << "point";
     for (const auto& v : spec.variations) csv << "," << csv_cell(v.name);
-    csv << ",runs";
+    csv << ",runs,expected_hs,expected_tm01,expected_tm02";
     for (const auto& name : summarized) {
       csv << "," << name << "_mean," << name << "_sd," << name << "_ci95_low," << name << "_ci95_high";
     }
@@ -715,8 +743,11 @@ std::vector<std::string> write_outputs(const SweepSpec& spec, std::vector<RunRow
       csv << p.point;
       const auto labels = labels_of(p.point);
       for (const auto& label : labels) csv << "," << csv_cell(label);
-      csv << "," << p.runs;
-      json entry = {{"point", p.point}, {"runs", p.runs}};
+      csv << "," << p.runs << "," << text(p.expected_hs) << "," << text(p.expected_tm01) << ","
+          << text(p.expected_tm02);
+      json entry = {{"point", p.point}, {"runs", p.runs},
+                    {"expected", {{"hs", number(p.expected_hs)}, {"tm01", number(p.expected_tm01)},
+                                  {"tm02", number(p.expected_tm02)}}}};
       for (std::size_t v = 0; v < spec.variations.size(); ++v) entry["parameters"][spec.variations[v].name] = labels[v];
       for (const auto& name : summarized) {
         const Summary& s = p.statistics.at(name);
@@ -746,8 +777,10 @@ std::vector<std::string> write_outputs(const SweepSpec& spec, std::vector<RunRow
   std::vector<std::string> notes;
   const bool render = reports::program_found(gnuplot);
   if (!render) {
-    notes.push_back(fmt::format("gnuplot ('{}') was not found: the plots' .dat and .gp are written "
-                                "to plots/, their PNGs are not (install gnuplot-nox)", gnuplot));
+    notes.push_back(gnuplot.empty()
+                        ? std::string("no gnuplot given: the plots' .dat and .gp are written to plots/, their PNGs are not")
+                        : fmt::format("gnuplot ('{}') was not found: the plots' .dat and .gp are written "
+                                      "to plots/, their PNGs are not (install gnuplot-nox)", gnuplot));
   }
   const fs::path plots = dir / "plots";
   fs::create_directories(plots);
@@ -760,7 +793,9 @@ std::vector<std::string> write_outputs(const SweepSpec& spec, std::vector<RunRow
     if (!variation.numeric()) continue;
     for (const auto& name : plotted) {
       std::map<std::string, reports::Series> series;
-      reports::Series truth{"truth", {}, true, {}};
+      reports::Series truth{name.rfind("fit_", 0) == 0 ? "truth (the point's case)"
+                                                       : "the spectrum on the grid (band-limited)",
+                            {}, true, {}};
       for (const auto& p : points) {
         const auto labels = labels_of(p.point);
         std::string others;
@@ -782,7 +817,14 @@ std::vector<std::string> write_outputs(const SweepSpec& spec, std::vector<RunRow
         line.title = others.empty() ? "mean over seeds (band: 95 % interval of the mean)" : others;
         line.points.emplace_back(x, s.mean);
         line.band.push_back({std::isfinite(s.low) ? s.low : s.mean, std::isfinite(s.high) ? s.high : s.mean});
-        if (name.rfind("fit_", 0) == 0 && others.empty()) truth.points.emplace_back(x, p.truth.at(name.substr(4)));
+        if (others.empty()) {
+          // The value the statistic should scatter about: the fit's truth, or the spectrum's
+          // band-limited value on the grid.
+          if (name.rfind("fit_", 0) == 0) truth.points.emplace_back(x, p.truth.at(name.substr(4)));
+          if (name == "hs") truth.points.emplace_back(x, p.expected_hs);
+          if (name == "tm01") truth.points.emplace_back(x, p.expected_tm01);
+          if (name == "tm02") truth.points.emplace_back(x, p.expected_tm02);
+        }
       }
       reports::Figure figure;
       figure.stem = name + "_vs_" + variation.key;
