@@ -483,7 +483,8 @@ int run_sweep(const SweepOptions& o) {
   if (!world.root()) return 0;
 
   const auto rows = read_journal(out / "rows.jsonl");
-  if (g_stop) {
+  // A signal after the last run changes nothing: the sweep is complete.
+  if (g_stop && long(rows.size()) < shard_runs) {
     std::cerr << fmt::format("swell sweep: interrupted: {} of {} runs are on disk in {}; run the "
                              "same command with --resume to continue\n",
                              rows.size(), shard_runs, (out / "rows.jsonl").string());
