@@ -57,9 +57,9 @@ std::vector<std::string> model_keys(const toml::table& document, const std::stri
   const auto model = document[section]["model"].value<std::string>();
   std::vector<std::string> keys = {"model"};
   if (section == "spectrum") keys.push_back("scale");
-  if (section == "spreading") keys.push_back("wind_dir_deg");
-  if (section == "spectrum") keys.push_back("wind_dir_deg");
   if (!model) return keys;
+  // The mean direction lives in [spreading], or in [spectrum] for phillips (its own spreading).
+  if (section == "spreading" || *model == "phillips") keys.push_back("wind_dir_deg");
   try {
     for (const auto& info : reference::model_parameters(*model)) {
       if (info.name == "depth" || info.name == "gravity" || info.name == "wind_dir") continue;
