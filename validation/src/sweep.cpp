@@ -14,6 +14,7 @@
 #include "swell/impls/synthesizer.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/model_factory.hpp"
+#include "swell/reference/sampling_validity.hpp"
 #include "swell/reports/figures.hpp"
 #include "swell/validation/jonswap_fit.hpp"
 #include "swell/validation/periodogram.hpp"
@@ -370,6 +371,19 @@ void validate(const SweepSpec& spec) {
       throw InvalidInput(fmt::format("at {}: --impl {} takes {} only, and the grid is {}×{} (use "
                                      "--impl fftw)", point_label(spec, point), spec.impl,
                                      capabilities.size_rule, ocean.grid.nx, ocean.grid.ny));
+    }
+    // The validity rule every command applies to a case (reference/sampling_validity.hpp), in
+    // the synthesis precision, with one run's working set: the synthesizer and the case's frames
+    // of six fields in double.
+    try {
+      const double frame_bytes = double(ocean.grid.nx) * double(ocean.grid.ny) * 6 * 8 * ocean.frames;
+      reference::require_valid_sampling(
+          ocean, spec.precision == impls::Precision::f64 ? reference::kFloat64 : reference::kFloat32,
+          impls::Synthesizer::bytes_needed(ocean.grid, spec.precision) +
+              std::uint64_t(std::min(frame_bytes, 1e18)),
+          "swell sweep");
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("at {}: {}", point_label(spec, point), e.what()));
     }
     if (point.case_file.scale == SpectrumScale::free) {
       throw InvalidInput(fmt::format("at {}: the case declares a free spectrum scale; a sweep "

@@ -130,6 +130,7 @@ TEST_F(Sweep, BadSpecsAreRefusedNamingTheKey) {
   refused("gamma=0.5,2", "gamma = 0.5");           // the case rules: γ ≥ 1
   refused("hs=-1,2", "hs = -1");
   refused("n=24,32", "powers of two");             // radix2 takes powers of two
+  refused("length=1e-6,200", "at length = 1e-6");  // the validity rule: no energy on the grid
 }
 
 TEST_F(Sweep, RunSeedsDependOnTheRunAloneAndDoNotCollide) {
