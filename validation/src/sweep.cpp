@@ -176,6 +176,47 @@ std::string point_label(const SweepSpec& spec, const Point& point) {
   return out.empty() ? "the base case" : out;
 }
 
+// Frequency moments of a power spectrum over the grid's wave vectors k ≠ 0 (FFT order), each at
+// ω(|k|) of the case's dispersion: m_n = Σ P(k) ω^n for n = 0, 1, 2, and the peak band of ω
+// (bands 4 % wide, as the moments check) with its P-weighted ω. Used for a run's periodogram and
+// for a point's expected μ(k).
+struct FrequencyMoments {
+  double m[3] = {0, 0, 0};
+  double peak_omega = kNaN;  // P-weighted ω of the most energetic band
+  double tm01() const { return m[1] > 0 ? 2 * kPi * m[0] / m[1] : kNaN; }
+  double tm02() const { return m[2] > 0 ? 2 * kPi * std::sqrt(m[0] / m[2]) : kNaN; }
+};
+
+FrequencyMoments frequency_moments(const reference::OceanCase& ocean, const std::vector<double>& power) {
+  const auto& grid = ocean.grid;
+  FrequencyMoments out;
+  std::map<int, std::pair<double, double>> bands;  // band → (Σ P, Σ P ω)
+  const double dkx = 2 * kPi / grid.lx, dky = 2 * kPi / grid.ly;
+  for (int row = 0; row < grid.ny; ++row) {
+    const int wy = row <= grid.ny / 2 ? row : row - grid.ny;
+    for (int i = 0; i < grid.nx; ++i) {
+      const int wx = i <= grid.nx / 2 ? i : i - grid.nx;
+      if (wx == 0 && wy == 0) continue;
+      const double p = power[std::size_t(row) * grid.nx + i];
+      const double omega = ocean.omega(std::hypot(wx * dkx, wy * dky));
+      out.m[0] += p;
+      out.m[1] += p * omega;
+      out.m[2] += p * omega * omega;
+      auto& band = bands[int(std::floor(std::log(omega) / std::log(1.04)))];
+      band.first += p;
+      band.second += p * omega;
+    }
+  }
+  double peak = 0;
+  for (const auto& [key, band] : bands) {
+    if (band.first > peak) {
+      peak = band.first;
+      out.peak_omega = band.second / band.first;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 bool Variation::numeric() const {
@@ -470,34 +511,11 @@ RunRow run(const SweepSpec& spec, const Point& point, int replicate) {
     const auto spectrum = field_spectrum(frames.field(int(f), reference::Field::height), grid);
     for (std::size_t i = 0; i < n; ++i) periodogram[i] += std::norm(spectrum[i]);
   }
-  double moment[3] = {0, 0, 0};
-  std::map<int, std::pair<double, double>> bands;  // band → (Σ I, Σ I ω)
-  const double dkx = 2 * kPi / grid.lx, dky = 2 * kPi / grid.ly;
-  for (int m = 0; m < grid.ny; ++m) {
-    const int wy = m <= grid.ny / 2 ? m : m - grid.ny;
-    for (int i = 0; i < grid.nx; ++i) {
-      const int wx = i <= grid.nx / 2 ? i : i - grid.nx;
-      if (wx == 0 && wy == 0) continue;
-      const double I = periodogram[std::size_t(m) * grid.nx + i] / double(frames.frames.size());
-      const double omega = ocean.omega(std::hypot(wx * dkx, wy * dky));
-      moment[0] += I;
-      moment[1] += I * omega;
-      moment[2] += I * omega * omega;
-      auto& band = bands[int(std::floor(std::log(omega) / std::log(1.04)))];
-      band.first += I;
-      band.second += I * omega;
-    }
-  }
-  s["tm01"] = moment[1] > 0 ? 2 * kPi * moment[0] / moment[1] : kNaN;
-  s["tm02"] = moment[2] > 0 ? 2 * kPi * std::sqrt(moment[0] / moment[2]) : kNaN;
-  double tp = kNaN, peak = 0;
-  for (const auto& [key, band] : bands) {
-    if (band.first > peak) {
-      peak = band.first;
-      tp = 2 * kPi * band.first / band.second;
-    }
-  }
-  s["tp"] = tp;
+  for (double& p : periodogram) p /= double(frames.frames.size());
+  const FrequencyMoments moments = frequency_moments(ocean, periodogram);
+  s["tm01"] = moments.tm01();
+  s["tm02"] = moments.tm02();
+  s["tp"] = 2 * kPi / moments.peak_omega;
 
   if (spec.fit) {
     const JonswapFit fit = fit_jonswap(ocean, {frames});
@@ -619,24 +637,11 @@ struct PointSummary {
 };
 
 void expected_moments(const reference::OceanCase& ocean, PointSummary& p) {
-  const auto& grid = ocean.grid;
-  const auto mu = expected_periodogram(*ocean.directional_spectrum(), grid);
-  double m[3] = {0, 0, 0};
-  for (int row = 0; row < grid.ny; ++row) {
-    const int wy = row <= grid.ny / 2 ? row : row - grid.ny;
-    for (int i = 0; i < grid.nx; ++i) {
-      const int wx = i <= grid.nx / 2 ? i : i - grid.nx;
-      if (wx == 0 && wy == 0) continue;
-      const double mu_k = mu[std::size_t(row) * grid.nx + i];
-      const double omega = ocean.omega(std::hypot(wx * 2 * kPi / grid.lx, wy * 2 * kPi / grid.ly));
-      m[0] += mu_k;
-      m[1] += mu_k * omega;
-      m[2] += mu_k * omega * omega;
-    }
-  }
-  p.expected_hs = 4 * std::sqrt(m[0]);
-  p.expected_tm01 = m[1] > 0 ? 2 * kPi * m[0] / m[1] : kNaN;
-  p.expected_tm02 = m[2] > 0 ? 2 * kPi * std::sqrt(m[0] / m[2]) : kNaN;
+  const FrequencyMoments moments =
+      frequency_moments(ocean, expected_periodogram(*ocean.directional_spectrum(), ocean.grid));
+  p.expected_hs = 4 * std::sqrt(moments.m[0]);
+  p.expected_tm01 = moments.tm01();
+  p.expected_tm02 = moments.tm02();
 }
 
 }  // namespace
