@@ -266,7 +266,7 @@ std::string write_buoy_plot(const std::string& png, const std::vector<BuoyRow>& 
   if (!dat) throw InvalidInput("--plot " + png + ": cannot write " + (dir / (stem + ".dat")).string());
   dat << "# " << title << " — written by `swell fit --spectrum`\n"
       << "# day hs_wvht hs_moments hs_fit hs_lo hs_hi flagged tp_peak_band tp_dominant tp_fit tp_lo "
-         "tp_hi  (m, s; NaN: missing; lo/hi: 95 % profile-likelihood interval)\n";
+         "tp_hi  (m, s; NaN: missing; lo/hi: 95 % profile-likelihood interval, quasi-likelihood where φ > 1)\n";
   auto v = [](double x) { return std::isfinite(x) ? fmt::format("{:.6g}", x) : std::string("NaN"); };
   for (const auto& r : rows) {
     const double day = (r.time.hours_since_2000() - t0) / 24.0;
@@ -289,16 +289,16 @@ std::string write_buoy_plot(const std::string& png, const std::vector<BuoyRow>& 
      << "'\n"
      << "set ylabel 'Hs [m]'\n"
      << "plot " << d << " using 1:($7==0?$4:NaN):5:6 with yerrorbars pt 7 ps 0.5 lc rgb '#1f77b4' "
-        "title 'fitted JONSWAP Hs, 95 % interval', \\\n"
+        "title 'fitted JONSWAP Hs, 95 % quasi-likelihood interval', \\\n"
      << "     " << d << " using 1:($7==1?$4:NaN) with points pt 6 ps 0.6 lc rgb '#1f77b4' "
-        "title 'fitted Hs, hour flagged (misfit)', \\\n"
+        "title 'fitted Hs, flagged: not one JONSWAP', \\\n"
      << "     " << d << " using 1:3 with lines lw 1.5 lc rgb '#2ca02c' title '4 sqrt(m0) of the bands', \\\n"
      << "     " << d << " using 1:2 with steps lw 1 lc rgb '#d62728' title 'WVHT (summary, 0.1 m)'\n"
      << "set ylabel 'period [s]'\n"
      << "plot " << d << " using 1:($7==0?$10:NaN):11:12 with yerrorbars pt 7 ps 0.5 lc rgb '#1f77b4' "
-        "title 'fitted JONSWAP Tp, 95 % interval', \\\n"
+        "title 'fitted JONSWAP Tp, 95 % quasi-likelihood interval', \\\n"
      << "     " << d << " using 1:($7==1?$10:NaN) with points pt 6 ps 0.6 lc rgb '#1f77b4' "
-        "title 'fitted Tp, hour flagged (misfit)', \\\n"
+        "title 'fitted Tp, flagged: not one JONSWAP', \\\n"
      << "     " << d << " using 1:8 with steps lw 1.5 lc rgb '#2ca02c' title 'Tp of the peak band', \\\n"
      << "     " << d << " using 1:9 with points pt 2 ps 0.6 lc rgb '#d62728' "
         "title 'dominant period (SwP or WWP)'\n"
@@ -311,6 +311,12 @@ nlohmann::json misfit_json(const validation::BuoyMisfit& m) {
   return {{"deviance", json_number(m.deviance)},
           {"deviance_dof", m.deviance_dof},
           {"deviance_p", json_number(m.deviance_p)},
+          {"dispersion", json_number(m.dispersion)},
+          {"energy_model", json_number(m.energy_model)},
+          {"energy_measured", json_number(m.energy_measured)},
+          {"energy_t", json_number(m.energy_t)},
+          {"energy_t_limit", json_number(m.energy_t_limit)},
+          {"energy_misfit", m.energy_misfit},
           {"second_peak", m.second_peak},
           {"second_peak_frequency", m.second_peak ? json_number(m.second_peak_frequency) : nullptr},
           {"second_peak_energy_fraction",
@@ -373,7 +379,9 @@ int run_buoy_fit(const FitOptions& o) {
   }
 
   // The summary of the week.
-  int paired_hours = 0, agree = 0, flagged = 0, fitted = 0, second_peaks = 0;
+  int paired_hours = 0, agree = 0, flagged = 0, fitted = 0, second_peaks = 0, energy = 0,
+      deviance_rejects = 0;
+  std::vector<double> dispersions;
   double largest_difference = 0;
   std::string largest_at;
   for (const auto& r : rows) {
@@ -387,6 +395,9 @@ int run_buoy_fit(const FitOptions& o) {
       ++fitted;
       flagged += r.fit->misfit.flagged;
       second_peaks += r.fit->misfit.second_peak;
+      energy += r.fit->misfit.energy_misfit;
+      deviance_rejects += r.fit->misfit.deviance_p < validation::kDevianceAlpha;
+      dispersions.push_back(r.fit->misfit.dispersion);
     }
   }
   int compared = 0;
@@ -415,6 +426,7 @@ int run_buoy_fit(const FitOptions& o) {
                     {"tp", estimate_json(r.fit->tp)},
                     {"gamma", estimate_json(r.fit->gamma)}};
         h["converged"] = r.fit->converged;
+        h["interval_dispersion"] = json_number(r.fit->dispersion);
         h["misfit"] = misfit_json(r.fit->misfit);
         h["bands_used"] = r.fit->bands_used;
         h["censored_bands"] = r.fit->censored_bands;
@@ -436,6 +448,7 @@ int run_buoy_fit(const FitOptions& o) {
         {"sigma_a", options.sigma_a},
         {"sigma_b", options.sigma_b},
         {"deviance_alpha", validation::kDevianceAlpha},
+        {"shape_alpha", validation::kShapeAlpha},
         {"hours", hours},
         {"summary",
          {{"hours", rows.size()},
@@ -446,6 +459,8 @@ int run_buoy_fit(const FitOptions& o) {
           {"fitted", fitted},
           {"flagged", flagged},
           {"second_peak", second_peaks},
+          {"energy_misfit", energy},
+          {"deviance_rejects", deviance_rejects},
           {"not_converged", not_converged}}}};
     write_json(o.json, document);
   }
@@ -457,9 +472,9 @@ int run_buoy_fit(const FitOptions& o) {
         options.sigma_a, options.sigma_b, options.dof, o.spectrum, rows.size(),
         validation::band_convention_name(bands.convention), bands.centre.size(),
         bands.centre.front(), bands.centre.back());
-    fmt::print("{:<17} {:>5} {:>4} {:>6} {:>22} {:>5} {:>4} {:>22} {:>18} {:>4} {:>7}  {}\n", "hour",
+    fmt::print("{:<17} {:>5} {:>4} {:>6} {:>22} {:>5} {:>4} {:>22} {:>18} {:>4} {:>7} {:>5}  {}\n", "hour",
                "4√m0", "WVHT", "Δ", "fitted Hs [95 %]", "Tp pk", "dom", "fitted Tp [95 %]",
-               "γ [95 %]", "APD", "p(dev)", "misfit");
+               "γ [95 %]", "APD", "p(dev)", "φ", "misfit");
     auto interval = [](const validation::Estimate& e, int precision) {
       return fmt::format("{:.{}f} [{:.{}f}, {:.{}f}]{}", e.value, precision, e.ci95_low, precision,
                          e.ci95_high, precision, e.calibrated ? " " : "*");
@@ -482,18 +497,23 @@ int run_buoy_fit(const FitOptions& o) {
                                              1 / f.misfit.second_peak_frequency,
                                              100 * f.misfit.second_peak_energy_fraction)
                                : std::string();
-      if (f.misfit.deviance_p < validation::kDevianceAlpha) {
-        misfit += misfit.empty() ? "deviance" : ", deviance";
+      if (f.misfit.energy_misfit) {
+        misfit += fmt::format("{}energy {:.0f} % (t {:+.1f})", misfit.empty() ? "" : ", ",
+                              100 * f.misfit.energy_model / f.misfit.energy_measured,
+                              f.misfit.energy_t);
       }
-      fmt::print("{:<17} {:>5.2f} {:>4} {:>6} {:>22} {:>5.1f} {:>4} {:>22} {:>18} {:>4} {:>7.1e}  {}\n",
+      fmt::print("{:<17} {:>5.2f} {:>4} {:>6} {:>22} {:>5.1f} {:>4} {:>22} {:>18} {:>4} {:>7.1e} {:>5.1f}  {}\n",
                  r.time.iso(), r.hs_moments, wvht, difference, interval(f.hs, 2), r.tp_peak,
                  dominant, interval(f.tp, 2), interval(f.gamma, 1),
                  std::isfinite(r.apd) ? fmt::format("{:.1f}", r.apd) : "—", f.misfit.deviance_p,
-                 misfit);
+                 f.misfit.dispersion, misfit);
     }
     fmt::print(
         "\n*: no calibrated 95 % interval (the hour is flagged, or the profile does not close); "
         "the JSON gives the reason.\n"
+        "Intervals: profile likelihood, quasi-likelihood where φ = deviance/dof > 1 (threshold "
+        "1.92·φ; McCullagh & Nelder 1989 §9.2). p(dev): the χ² test of exact JONSWAP at this ν "
+        "(graded information, not the flag).\n"
         "dom: the summary's SwP or WWP, whichever belongs to the larger of SwH and WWH (the summary "
         "has no DPD); APD: its average period.\n");
     if (!o.summary.empty()) {
@@ -502,10 +522,16 @@ int run_buoy_fit(const FitOptions& o) {
           "and the 0.001 m²/Hz rounding of S) in {} of {}; largest |4√m0 − WVHT| = {:.3f} m ({})\n",
           paired_hours, rows.size(), agree, compared, largest_difference, largest_at);
     }
+    std::sort(dispersions.begin(), dispersions.end());
+    const auto quantile = [&](double q) {
+      return dispersions.empty() ? NAN : dispersions[std::size_t(q * double(dispersions.size() - 1) + 0.5)];
+    };
     fmt::print(
-        "misfit: {} of {} fitted hours flagged ({} with a second significant peak; deviance "
-        "p < {:g} otherwise)\n",
-        flagged, fitted, second_peaks, validation::kDevianceAlpha);
+        "misfit: {} of {} fitted hours flagged as not one JONSWAP ({} with a second significant "
+        "peak, {} whose fitted energy disagrees with the measured at p < {:g}); φ = deviance/dof "
+        "{:.1f}–{:.1f}, median {:.1f}; the χ² test rejects exact JONSWAP (p < {:g}) in {} hours\n",
+        flagged, fitted, second_peaks, energy, validation::kShapeAlpha, quantile(0), quantile(1),
+        quantile(0.5), validation::kDevianceAlpha, deviance_rejects);
   }
   if (!o.plot.empty()) {
     const std::string problem =
@@ -593,7 +619,8 @@ Action add_fit_command(CLI::App& app) {
       "With --spectrum FILE [--summary FILE] instead: every hour of an NDBC buoy spectrum, "
       "fitted with the band values' χ²_ν/ν law (values under 0.01 m²/Hz as the intervals they "
       "were rounded from), 4√m0 against WVHT, and a misfit flag (a second significant peak, or "
-      "a deviance beyond its χ² reference at p < 0.001); text, --json (hours[…], summary) and "
+      "a fitted energy that disagrees with the measured beyond its quasi-likelihood scatter at "
+      "p < 0.001), quasi-likelihood intervals scaled by φ = deviance/dof where it exceeds 1; text, --json (hours[…], summary) and "
       "--plot. See docs/buoy_fit.md.");
   return [o] { return run_fit_command(*o); };
 }

@@ -18,6 +18,7 @@
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/special_functions/digamma.hpp>
 #include <boost/math/special_functions/gamma.hpp>
+#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <numbers>
 
@@ -150,6 +151,7 @@ double log_gamma_q(double a, double x) {
 struct Band {
   std::array<double, 8> f{}, log_weight{};  // Gauss–Legendre nodes (Hz), log(weight/2)
   double a = 0;                             // ν/2
+  double width = 0;                         // Δf (Hz)
   double value = 0;                         // Ŝ as printed
   bool censored = false;                    // value < 10 quanta: the interval [lo, hi)
   double lo = 0, hi = 0;
@@ -381,6 +383,7 @@ struct Profiler {
   const Likelihood& l;
   Eigen::Vector3d phi_hat;
   double cost_hat;
+  double z = kZ975;  // the signed root's target: z₀.₉₇₅ √φ (quasi-likelihood) or z₀.₉₇₅
 
   static double t_of(int i, const Eigen::Vector3d& phi) {
     return i == 2 ? std::log1p(phi[2] * phi[2]) : phi[i];
@@ -412,13 +415,13 @@ struct Profiler {
     const double t_hat = t_of(i, phi_hat);
     Eigen::Vector3d phi = phi_hat;
     double t_in = t_hat, r_in = 0;
-    double t_out = std::clamp(t_hat + side * kZ975 * std::max(se_t, 1e-6), t_min, t_max);
+    double t_out = std::clamp(t_hat + side * z * std::max(se_t, 1e-6), t_min, t_max);
     double r_out = side * root(i, t_out, phi);
-    for (int step = 0; r_out < kZ975; ++step) {
+    for (int step = 0; r_out < z; ++step) {
       if ((side < 0 && t_out <= t_min) || (side > 0 && t_out >= t_max) || step > 60) {
         return {t_out, false, i == 2 && side < 0 && t_out <= t_min};
       }
-      double next = t_out + (kZ975 - r_out) * (t_out - t_in) / std::max(r_out - r_in, 1e-3);
+      double next = t_out + (z - r_out) * (t_out - t_in) / std::max(r_out - r_in, 1e-3);
       next = side > 0 ? std::min(std::max(next, t_out + 0.1 * std::abs(t_out - t_hat) + 1e-6), t_max)
                       : std::max(std::min(next, t_out - 0.1 * std::abs(t_out - t_hat) - 1e-6), t_min);
       t_in = t_out, r_in = r_out;
@@ -426,11 +429,11 @@ struct Profiler {
       r_out = side * root(i, t_out, phi);
     }
     // Bracket [t_in (r < z), t_out (r ≥ z)]: Illinois.
-    double fa = r_in - kZ975, fb = r_out - kZ975, a = t_in, b = t_out;
+    double fa = r_in - z, fb = r_out - z, a = t_in, b = t_out;
     int last = 0;
     for (int iteration = 0; iteration < 60 && std::abs(fb) > 1e-4; ++iteration) {
       const double c = b - fb * (b - a) / (fb - fa);
-      const double fc = side * root(i, c, phi) - kZ975;
+      const double fc = side * root(i, c, phi) - z;
       if ((fc > 0) == (fb > 0)) {
         b = c, fb = fc;
         if (last == -1) fa *= 0.5;
@@ -469,13 +472,53 @@ double saturated_censored(const Band& b) {
   return std::min(f1, f2);
 }
 
+// The energy test (buoy_fit.hpp, docs/buoy_fit.md §5), a Hausman-type test: two estimates of
+// the energy in the likelihood's bands, the fitted model's m0_model = Σ S̄_j(θ̂) Δf_j (efficient
+// when the model holds) and the measured m0 = Σ Ŝ_j Δf_j (consistent whatever the shape), differ
+// under the model by a variable of variance Var m̂0 − Var m0_model (Hausman 1978: the efficient
+// estimator is uncorrelated with its difference from any other consistent one), with
+//     Var m̂0 = Σ (2 S̄_j²/νj + q²/12) Δf_j²,   Var m0_model = gᵀ H⁻¹ g,  g = ∂m0_model/∂ψ,
+// both times φ = max(1, φ̂) (quasi-likelihood). The difference is referred to Student's t on the
+// deviance's degrees of freedom (φ̂ is estimated from them). Where the subtraction leaves less
+// than a tenth of Var m̂0 (a singular H, or censored bands that make the moment estimate the
+// better one), a tenth is kept: the test stays conservative there. Returns whether it flags.
+bool energy_test(const Likelihood& fitted, const Eigen::Vector3d& psi,
+                 const Eigen::Matrix3d& covariance, double quantum, BuoyMisfit& m) {
+  using Jet = ceres::Jet<double, 3>;
+  Jet model(0.0);
+  double variance = 0;
+  m.energy_measured = 0;
+  fitted.for_each_log_mean(Jet(psi[0], 0), Jet(psi[1], 1), Jet(psi[2], 2),
+                           [&](std::size_t k, const Jet& log_s) {
+                             const Band& b = fitted.bands[k];
+                             const double s = std::exp(log_s.a);
+                             model += exp(log_s) * b.width;
+                             m.energy_measured += b.value * b.width;
+                             variance += (s * s / b.a + quantum * quantum / 12) * b.width * b.width;
+                           });
+  m.energy_model = model.a;
+  double fitted_variance = 0;
+  if (covariance.allFinite()) {
+    const Eigen::Vector3d g = model.v;
+    fitted_variance = g.dot(covariance * g);
+  }
+  const double difference_variance = std::max(variance - fitted_variance, 0.1 * variance);
+  m.energy_t = (m.energy_model - m.energy_measured) /
+               std::sqrt(std::max(1.0, m.dispersion) * difference_variance);
+  m.energy_t_limit = boost::math::quantile(
+      boost::math::complement(boost::math::students_t(m.deviance_dof), kShapeAlpha / 2));
+  m.energy_misfit = std::abs(m.energy_t) > m.energy_t_limit;
+  return m.energy_misfit;
+}
+
 // The deviance over the fitted bands (`fitted`, model `fitted_log_mean`); the second peak over
 // every band with a value (`all`, `index` into the spectrum, model `log_mean`), those below the
 // likelihood's window included.
 BuoyMisfit misfit(const Likelihood& fitted, const std::vector<double>& fitted_log_mean,
                   const Likelihood& all, const std::vector<std::size_t>& index,
                   const std::vector<double>& log_mean, const SpectralBands& bands,
-                  const std::vector<double>& density, double tp_hat, double quantum) {
+                  const std::vector<double>& density, double tp_hat, double quantum,
+                  const Eigen::Vector3d& psi, const Eigen::Matrix3d& covariance) {
   BuoyMisfit m;
   int informative = 0;
   for (std::size_t k = 0; k < fitted.bands.size(); ++k) {
@@ -494,6 +537,8 @@ BuoyMisfit misfit(const Likelihood& fitted, const std::vector<double>& fitted_lo
   }
   m.deviance_dof = std::max(1, informative - 3);
   m.deviance_p = boost::math::gamma_q(0.5 * m.deviance_dof, 0.5 * std::max(0.0, m.deviance));
+  m.dispersion = std::max(0.0, m.deviance) / m.deviance_dof;
+
 
   // The second peak: runs of bands outside [0.8, 1.25] f̂p where the data exceed the model.
   const double fp = 1.0 / tp_hat;
@@ -599,9 +644,12 @@ BuoyMisfit misfit(const Likelihood& fitted, const std::vector<double>& fitted_lo
         m.second_peak_frequency, 1 / m.second_peak_frequency,
         100 * m.second_peak_energy_fraction, m.second_peak_z));
   }
-  if (m.deviance_p < kDevianceAlpha) {
-    reasons.push_back(fmt::format("deviance {:.1f} on {} dof (p = {:.2g} < {:g})", m.deviance,
-                                  m.deviance_dof, m.deviance_p, kDevianceAlpha));
+  if (energy_test(fitted, psi, covariance, quantum, m)) {
+    reasons.push_back(fmt::format(
+        "the fitted JONSWAP holds {:.0f} % of the measured energy in its bands (t = {:+.1f} beyond "
+        "±{:.2f}, p < {:g}, with φ = {:.1f})",
+        100 * m.energy_model / m.energy_measured, m.energy_t, m.energy_t_limit, kShapeAlpha,
+        std::max(1.0, m.dispersion)));
   }
   m.flagged = !reasons.empty();
   for (std::size_t i = 0; i < reasons.size(); ++i) m.reason += (i ? "; " : "") + reasons[i];
@@ -621,6 +669,7 @@ constexpr std::array<double, 8> kWeights = {0.1012285362903763, 0.22238103445337
 Band make_band(const SpectralBands& bands, std::size_t j) {
   Band b;
   const double mid = bands.centre[j], half = 0.5 * bands.width[j];
+  b.width = bands.width[j];
   for (int q = 0; q < 8; ++q) {
     b.f[q] = mid + half * kNodes[q];
     b.log_weight[q] = std::log(0.5 * kWeights[q]);
@@ -770,32 +819,6 @@ BuoyFit fit_buoy_spectrum(const std::vector<double>& density, const SpectralBand
     }
   } catch (const NumericalError&) {
   }
-  std::array<Estimate, 3> e;
-  for (int i = 0; i < 3; ++i) {
-    const double se_t = std::sqrt(covariance(i, i));
-    e[i] = wald(theta[i], theta[i] * se_t);
-    if (!std::isfinite(se_t)) {
-      e[i].calibrated = false;
-      e[i].reason = "the observed information is singular: these bands do not determine Hs, Tp and γ";
-      continue;
-    }
-    if (!options.intervals) continue;
-    const Profiler profiler{window, phi, best.cost};
-    const double t_hat = Profiler::t_of(i, phi);
-    const double reach = std::max(40 * se_t, 3.0);
-    const double t_min = i == 2 ? 0.0 : t_hat - reach;
-    const double t_max = i == 2 ? std::max(std::log(1e4), t_hat + reach) : t_hat + reach;
-    const auto low = profiler.find(i, -1, se_t, t_min, t_max);
-    const auto high = profiler.find(i, +1, se_t, t_min, t_max);
-    e[i].method = "profile-likelihood";
-    e[i].ci95_low = low.boundary ? 1.0 : std::exp(low.t);
-    e[i].ci95_high = std::exp(high.t);
-    if ((!low.found && !low.boundary) || !high.found) {
-      e[i].calibrated = false;
-      e[i].reason = "the profile likelihood does not fall by 1.92 within the search range: the "
-                    "bands do not bound this parameter";
-    }
-  }
   // A fitted peak outside the measured bands: only its flank is seen.
   const double fp = 1 / theta[1];
   const bool peak_inside = fp >= std::max(fit.window_low, bands.low_edge(index.front())) &&
@@ -806,7 +829,37 @@ BuoyFit fit_buoy_spectrum(const std::vector<double>& density, const SpectralBand
   window.for_each_log_mean(psi[0], psi[1], psi[2],
                            [&](std::size_t k, double v) { window_log_mean[k] = v; });
   fit.misfit = misfit(window, window_log_mean, all, index, log_mean, bands, density, theta[1],
-                      options.quantum);
+                      options.quantum, psi, covariance);
+  if (options.quasi_likelihood) fit.dispersion = std::max(1.0, fit.misfit.dispersion);
+  std::array<Estimate, 3> e;
+  for (int i = 0; i < 3; ++i) {
+    const double se_t = std::sqrt(fit.dispersion * covariance(i, i));
+    e[i] = wald(theta[i], theta[i] * se_t);
+    if (!std::isfinite(se_t)) {
+      e[i].calibrated = false;
+      e[i].reason = "the observed information is singular: these bands do not determine Hs, Tp and γ";
+      continue;
+    }
+    if (!options.intervals) continue;
+    const Profiler profiler{window, phi, best.cost, kZ975 * std::sqrt(fit.dispersion)};
+    const double t_hat = Profiler::t_of(i, phi);
+    const double reach = std::max(40 * se_t, 3.0);
+    const double t_min = i == 2 ? 0.0 : t_hat - reach;
+    const double t_max = i == 2 ? std::max(std::log(1e4), t_hat + reach) : t_hat + reach;
+    const auto low = profiler.find(i, -1, se_t, t_min, t_max);
+    const auto high = profiler.find(i, +1, se_t, t_min, t_max);
+    e[i].method = fit.dispersion > 1
+                      ? fmt::format("profile-likelihood, quasi (φ = {:.2f})", fit.dispersion)
+                      : std::string("profile-likelihood");
+    e[i].ci95_low = low.boundary ? 1.0 : std::exp(low.t);
+    e[i].ci95_high = std::exp(high.t);
+    if ((!low.found && !low.boundary) || !high.found) {
+      e[i].calibrated = false;
+      e[i].reason = fmt::format(
+          "the profile likelihood does not fall by {:.3g} within the search range: the bands do "
+          "not bound this parameter", 0.5 * kZ975 * kZ975 * fit.dispersion);
+    }
+  }
   for (auto& estimate : e) {
     if (!estimate.calibrated) continue;
     if (!peak_inside) {

@@ -29,16 +29,27 @@ struct BuoyFitOptions {
   double quantum = 0.001;  // m²/Hz: the printed resolution of Ŝ
   double sigma_a = 0.07, sigma_b = 0.09;
   bool intervals = true;   // profile-likelihood intervals (false: Wald only, faster)
+  // Quasi-likelihood intervals (McCullagh & Nelder 1989, §9.2; Wedderburn 1974): where the
+  // deviance shows overdispersion (φ̂ = D/dof > 1), the profile's threshold 1.92 = χ²₁(0.95)/2
+  // is multiplied by φ̂ and the standard errors by √φ̂; where φ̂ ≤ 1, nothing is scaled.
+  // false: the plain likelihood's intervals (for the tests' comparison).
+  bool quasi_likelihood = true;
 };
 
-// Why one JONSWAP may not describe the hour.
+// Why one JONSWAP may not describe the hour (docs/buoy_fit.md §5).
 struct BuoyMisfit {
   // Deviance D = 2(ℓ_saturated − ℓ(θ̂)), each band's term divided by its expectation
   // 2a(log a − ψ(a)) under the model (a = ν/2; the Bartlett-type factor 1 + 1/(3ν) to first
-  // order), against χ² with `deviance_dof` = (informative bands − 3) degrees of freedom.
+  // order), against χ² with `deviance_dof` = (informative bands − 3) degrees of freedom. Graded
+  // information, not the flag: on real spectra the χ² test rejects exact JONSWAP in every hour
+  // (real seas carry shape detail beyond JONSWAP at ν = 24).
   double deviance = 0;
   int deviance_dof = 0;
   double deviance_p = 1;  // P(χ²_dof ≥ D)
+  // The overdispersion φ̂ = D / deviance_dof: how many times the residuals' variance exceeds
+  // the sampling law's (1 for data that follow it). The intervals are scaled by max(1, φ̂)
+  // (quasi-likelihood; BuoyFit::dispersion).
+  double dispersion = 1;
   // A second significant peak, by either of two rules (docs/buoy_fit.md §5):
   //  - against the fit: a run of bands outside the fitted peak's neighbourhood (f/f̂p outside
   //    [0.8, 1.25]) where the data exceed the model, holding ≥ 5 % of the measured m0, at ≥ 4
@@ -51,15 +62,32 @@ struct BuoyMisfit {
   double second_peak_frequency = 0;        // Hz, that local maximum (0 if none)
   double second_peak_energy_fraction = 0;  // its excess over the model / measured m0
   double second_peak_z = 0;                // excess / its standard deviation under the model
-  bool flagged = false;                    // second_peak or deviance_p < kDevianceAlpha
-  std::string reason;                      // empty when not flagged
+  // The energy test (a shape misfit gross enough to matter): the fitted spectrum's energy in
+  // the likelihood's bands, m0_model = Σ S̄_j Δf_j, against the measured Σ Ŝ_j Δf_j there, in
+  // standard deviations of the measured sum under the model with the overdispersion allowed,
+  //     t = (m0_model − m0_measured) / √(max(1, φ̂) Σ (2 S̄_j²/νj + q²/12) Δf_j²),
+  // referred to Student's t with deviance_dof degrees of freedom (φ̂ is estimated from them);
+  // |t| beyond its two-sided 1 − kShapeAlpha quantile flags the hour: the fitted JONSWAP does
+  // not hold the energy the buoy measured, whatever the spectrum's fine shape.
+  double energy_model = 0, energy_measured = 0;  // m², over the likelihood's bands
+  double energy_t = 0;
+  double energy_t_limit = 0;                    // the two-sided quantile |t| is held to
+  bool energy_misfit = false;
+  bool flagged = false;                          // second_peak or energy_misfit
+  std::string reason;                            // empty when not flagged
 };
 
-// The deviance's false-alarm level per hour (docs/buoy_fit.md §5).
+// The deviance's reference level, reported (deviance_p < it: the χ² test rejects exact
+// JONSWAP), no longer the flag (docs/buoy_fit.md §5).
 inline constexpr double kDevianceAlpha = 1e-3;
+// The energy test's two-sided false-alarm level per hour.
+inline constexpr double kShapeAlpha = 1e-3;
 
 struct BuoyFit {
   Estimate hs, tp, gamma;  // m, s, 1; standard errors from the observed information
+  // The scale applied to the intervals: max(1, φ̂) with quasi_likelihood, else 1 (the profile's
+  // threshold is 1.92·dispersion, the standard errors √dispersion times the likelihood's).
+  double dispersion = 1;
   BuoyMisfit misfit;
   int bands_used = 0;      // bands with a value (not "MM")
   // The likelihood reads the bands from window_low = half the measured peak frequency up (below
