@@ -193,8 +193,9 @@ int finish_outputs(const sweep::SweepSpec& spec, const std::vector<sweep::RunRow
                    const fs::path& out, const SweepOptions& o, bool complete, int failures) {
   const auto notes = sweep::write_outputs(spec, rows, out, o.gnuplot);
   for (const auto& note : notes) std::cerr << "swell sweep: note: " << note << "\n";
-  print_summary(spec, out);
-  std::cout << fmt::format("{} runs of {} points × {} seeds in {}: runs.csv, runs.json, points.csv, "
+  // With --json - standard output is the JSON document alone.
+  if (o.json != "-") print_summary(spec, out);
+  if (o.json != "-") std::cout << fmt::format("{} runs of {} points × {} seeds in {}: runs.csv, runs.json, points.csv, "
                            "points.json, plots/\n",
                            rows.size(), spec.point_count(), spec.seeds, out.string());
   if (!o.json.empty()) {

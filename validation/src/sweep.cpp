@@ -390,6 +390,15 @@ void validate(const SweepSpec& spec) {
       throw InvalidInput(fmt::format("--vary {}: [{}] {} is varied twice", v.name, v.section, v.key));
     }
   }
+  // Each point is built and checked below, before any run: a product beyond ten million points
+  // is refused rather than left to overflow or to take hours before the first run.
+  double points = 1;
+  for (const auto& v : spec.variations) points *= double(v.labels.size());
+  if (points * spec.seeds > 1e10 || points > 1e7) {
+    throw InvalidInput(fmt::format("the sweep has {:.3g} points × {} seeds: more than swell sweep "
+                                   "takes (10⁷ points, 10¹⁰ runs); split it into several sweeps",
+                                   points, spec.seeds));
+  }
   const auto backend = impls::make_backend(spec.impl);
   const auto capabilities = backend->capabilities();
   if (std::find(capabilities.precisions.begin(), capabilities.precisions.end(), spec.precision) ==
@@ -853,7 +862,10 @@ std::vector<std::string> write_outputs(const SweepSpec& spec, std::vector<RunRow
       figure.log_x = figure.log_y = false;
       figure.written_by = "swell sweep";
       figure.key = "inside top left box opaque";
-      for (auto& [key, line] : series) {
+      for (auto& entry : series) {
+        // A named reference, not a structured binding: lambdas may not capture bindings before C++20
+        // (clang refuses it in the sanitizer build).
+        const auto& line = entry.second;
         // Sorted by x, bands kept beside their points.
         std::vector<std::size_t> order(line.points.size());
         for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;

@@ -131,6 +131,12 @@ TEST_F(Sweep, BadSpecsAreRefusedNamingTheKey) {
   refused("hs=-1,2", "hs = -1");
   refused("n=24,32", "powers of two");             // radix2 takes powers of two
   refused("length=1e-6,200", "at length = 1e-6");  // the validity rule: no energy on the grid
+  try {
+    sweep::validate(spec({"gamma=1:7:100000", "hs=1:3:1000"}, 1));
+    ADD_FAILURE() << "10⁸ points were accepted";
+  } catch (const swell::InvalidInput& e) {
+    EXPECT_TRUE(contains(e.what(), "split it")) << e.what();
+  }
 }
 
 TEST_F(Sweep, RunSeedsDependOnTheRunAloneAndDoNotCollide) {
@@ -208,6 +214,16 @@ TEST_F(Sweep, CliRefusesBadSpecsBeforeAnyWork) {
   const auto missing = swell("sweep --case " + path("nope.toml") + " --seeds 1 --out " + path("o"));
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_TRUE(contains(missing.output, "nope.toml")) << missing.output;
+}
+
+TEST_F(Sweep, JsonToStandardOutputIsTheDocumentAlone) {
+  const auto run = swell("sweep --case " + path("case.toml") + " --vary gamma=1,2 --seeds 1 "
+                         "--progress none --gnuplot '' --json - --out " + path("j"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  // stderr (the gnuplot note) comes first in the captured output; the document follows.
+  const auto document = nlohmann::json::parse(run.output.substr(run.output.find('{')));
+  EXPECT_EQ(document["runs"], 2);
+  EXPECT_EQ(document["complete"], true);
 }
 
 TEST_F(Sweep, CliWritesRowsSummariesAndPlots) {
