@@ -70,7 +70,9 @@ reference::FrameSequence read_realization(const std::string& input,
                          ": a directory without case.toml (give a directory written by swell "
                          "synth, or a frame file pattern such as DIR/frame_%04d.exr)");
     }
-    return validation::read_frames(validation::read_case_file(case_path));
+    const auto case_file = validation::read_case_file(case_path);
+    validation::require_single_grid(case_file, "swell fit");
+    return validation::read_frames(case_file);
   }
   validation::CaseFile with_channels = case_file;
   if (with_channels.input.channels.empty()) {
@@ -99,6 +101,7 @@ nlohmann::json estimate_json(const validation::Estimate& e) {
 
 int run_fit(const FitOptions& o) {
   const auto case_file = validation::read_case_file(o.case_file);
+  validation::require_single_grid(case_file, "swell fit");
   const auto& ocean = case_file.ocean;
   // Bad case before reading any frame: the spectrum must be in the family.
   const auto truth = validation::case_jonswap_parameters(ocean);

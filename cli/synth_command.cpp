@@ -274,74 +274,139 @@ double rms(const std::vector<double>& values) {
   return values.empty() ? 0 : std::sqrt(sum / static_cast<double>(values.size()));
 }
 
+// How one surface's frames are made and stored: the choices run_synth takes from the flags.
+struct SurfaceWriting {
+  ImplChoice impl;
+  impls::Precision precision = impls::Precision::f32;
+  validation::FrameWriteOptions write_options;
+  std::vector<Field> fields;  // the fields stored
+  bool png = false;
+  bool quiet = false;  // standard output carries the JSON only
+  std::string label;   // "" or "cascade 1: ", before each frame's line
+};
+
+// Synthesizes `ocean`'s frames into `dir` (created if missing), appending the files written to
+// `files`; a lattice's frame 0 goes to `first_surface` for its mesh. The validity rule runs
+// first, in the narrower of the synthesis precision and what the files store (EXR, TIFF and PNG
+// hold float32 or less), with the memory a synthesizer and the writer need.
+void write_surface(const reference::OceanCase& ocean, const fs::path& dir,
+                   const SurfaceWriting& w, std::vector<fs::path>& files,
+                   validation::MeshSurface* first_surface = nullptr) {
+  const bool stores_fp64 = w.write_options.float64;
+  const auto& numbers = w.precision == impls::Precision::f64 && stores_fp64 ? reference::kFloat64
+                                                                           : reference::kFloat32;
+  const double samples = double(ocean.sampling().size());
+  // A lattice: the synthesizer's row of N classes, and the mesh (about 100 bytes a point).
+  const reference::Grid transform_shape =
+      w.impl.lattice ? reference::Grid{static_cast<int>(std::min<double>(samples, 2147483647.0)), 1,
+                                       ocean.grid.lx, ocean.grid.ly}
+                     : ocean.grid;
+  const double writer_bytes =
+      samples * 6 * (stores_fp64 ? 8 : 4) + (w.impl.lattice ? samples * 100 : 0);
+  reference::require_valid_sampling(
+      ocean, numbers,
+      impls::Synthesizer::bytes_needed(transform_shape, w.precision) +
+          std::uint64_t(std::min(writer_bytes, 1e18)),
+      "swell synth");
+
+  impls::SynthesizerOptions options;
+  options.backend = w.impl.backend;
+  options.precision = w.precision;
+  const impls::Synthesizer synthesizer(ocean, options);  // unknown backends name the valid ones
+  for (int f = 0; f < ocean.frames; ++f) {
+    reference::FieldFrame frame = synthesizer.frame(ocean.time(f));
+    if (first_surface && f == 0) {
+      first_surface->h = frame.fields.at(Field::height);
+      first_surface->dx = frame.fields.at(Field::disp_x);
+      first_surface->dy = frame.fields.at(Field::disp_y);
+    }
+    if (w.png && f == 0) {
+      // The gate judges PNG frames by their quantization (frame_io.hpp): refuse before writing
+      // a PNG whose step would hide every wave vector from it.
+      const validation::IntegerRange range = w.write_options.png_range;
+      double u = 0;
+      for (Field field : w.fields) {
+        u = std::max(u, validation::quantization_roundoff(range, 65535.0, frame.fields.at(field)));
+      }
+      const double h_rms = rms(frame.fields.at(Field::height));
+      validation::require_judgeable_rounding(ocean, u, h_rms * h_rms);
+    }
+    const auto& j = frame.fields.at(Field::jacobian);
+    const double min_j = *std::min_element(j.begin(), j.end());
+    for (Field field : reference::kAllFields) {
+      if (std::find(w.fields.begin(), w.fields.end(), field) == w.fields.end()) {
+        frame.fields.erase(field);
+      }
+    }
+    fs::create_directories(dir);
+    const auto written = validation::write_frame(dir, ocean.grid, frame, f, w.write_options);
+    files.insert(files.end(), written.begin(), written.end());
+    if (!w.quiet) {
+      const auto& h = frame.fields.at(Field::height);
+      fmt::print("{}frame {:4d}  t = {:g} s  rms h = {:.4g} m (4σ = {:.4g} m)  min J = {:.4g}  "
+                 "→ {}{}\n",
+                 w.label, f, ocean.time(f), rms(h), 4 * rms(h), min_j, written.front().string(),
+                 written.size() > 1 ? fmt::format(" (+{} files)", written.size() - 1) : "");
+    }
+  }
+}
+
+// The input section that reads frames written into the subfolder `folder` back.
+validation::InputSpec input_in(const std::string& folder, const SurfaceWriting& w) {
+  auto input = validation::frame_input_spec(w.fields, w.write_options);
+  input.files = folder + "/" + input.files;
+  return input;
+}
+
 int run_synth(const SynthOptions& o) {
   validation::CaseFile c = build_case(o);
   const auto& ocean = c.ocean;
-  const ImplChoice impl = parse_impl(o.impl);
-  const auto precision = impls::precision_from_string(o.precision);
-  validation::FrameWriteOptions write_options;
+  SurfaceWriting w;
+  w.impl = parse_impl(o.impl);
+  w.precision = impls::precision_from_string(o.precision);
+  auto& write_options = w.write_options;
   // A lattice's frames are arrays of its N points: .npy unless asked otherwise (and then
   // refused by name: an image needs a grid).
   write_options.format = validation::frame_format_from_string(
-      impl.lattice && !o.has("--format") ? std::string("npy") : o.format);
-  if (impl.lattice && write_options.format != validation::FrameFormat::npy) {
+      w.impl.lattice && !o.has("--format") ? std::string("npy") : o.format);
+  if (w.impl.lattice && write_options.format != validation::FrameFormat::npy) {
     throw InvalidInput(fmt::format("--format {}: lattice frames are written as npy (one array of "
                                    "the N points per field, with points.npy and mesh.ply); "
                                    "images need a grid",
                                    o.format));
   }
   write_options.float64 =
-      precision == impls::Precision::f64 && write_options.format == validation::FrameFormat::npy;
+      w.precision == impls::Precision::f64 && write_options.format == validation::FrameFormat::npy;
   // PNG: 16 bits through a value range, and room for three fields (R, G, B): the height and
   // the horizontal displacements, what a game engine's heightmap textures hold.
-  const bool png = write_options.format == validation::FrameFormat::png;
-  if (png != !o.value_range.empty()) {
-    throw InvalidInput(png ? "--format png needs --value-range LO,HI: the values (m) that pixel 0 "
-                             "and pixel 65535 stand for, such as -4,4"
-                           : "--value-range applies to --format png only");
+  w.png = write_options.format == validation::FrameFormat::png;
+  if (w.png != !o.value_range.empty()) {
+    throw InvalidInput(w.png ? "--format png needs --value-range LO,HI: the values (m) that pixel 0 "
+                               "and pixel 65535 stand for, such as -4,4"
+                             : "--value-range applies to --format png only");
   }
-  if (png) {
+  if (w.png) {
     if (o.value_range.size() != 2) {
       throw InvalidInput(fmt::format("--value-range takes two numbers LO,HI (got {})",
                                      o.value_range.size()));
     }
     write_options.png_range = {o.value_range[0], o.value_range[1]};
   }
-  std::vector<Field> fields(reference::kAllFields.begin(), reference::kAllFields.end());
-  if (png) fields = {Field::height, Field::disp_x, Field::disp_y};
-
-  // The validity rule (reference/sampling_validity.hpp) in the narrower of the synthesis
-  // precision and what the files store (EXR, TIFF and PNG hold float32 or less), with the
-  // memory a synthesizer and the writer need.
-  const bool stores_fp64 = write_options.float64;
-  const auto& numbers = precision == impls::Precision::f64 && stores_fp64 ? reference::kFloat64
-                                                                         : reference::kFloat32;
-  const double samples = double(ocean.sampling().size());
-  // A lattice: the synthesizer's row of N classes, and the mesh (about 100 bytes a point).
-  const reference::Grid transform_shape =
-      impl.lattice ? reference::Grid{static_cast<int>(std::min<double>(samples, 2147483647.0)), 1,
-                                     ocean.grid.lx, ocean.grid.ly}
-                   : ocean.grid;
-  const double writer_bytes = samples * 6 * (stores_fp64 ? 8 : 4) + (impl.lattice ? samples * 100 : 0);
-  reference::require_valid_sampling(
-      ocean, numbers,
-      impls::Synthesizer::bytes_needed(transform_shape, precision) +
-          std::uint64_t(std::min(writer_bytes, 1e18)),
-      "swell synth");
+  w.fields.assign(reference::kAllFields.begin(), reference::kAllFields.end());
+  if (w.png) w.fields = {Field::height, Field::disp_x, Field::disp_y};
+  w.quiet = o.json == "-";
 
   const auto start = std::chrono::steady_clock::now();
-  impls::SynthesizerOptions options;
-  options.backend = impl.backend;
-  options.precision = precision;
-  const impls::Synthesizer synthesizer(ocean, options);  // unknown backends name the valid ones
-
-  const bool quiet = o.json == "-";  // standard output carries the JSON only
   const fs::path out(o.out);
-  if (!quiet) {
-    fmt::print("swell synth: {}; {} frame{}; {} {}; {} files in {}\n", ocean.describe(),
+  if (!w.quiet) {
+    fmt::print("swell synth: {}; {} frame{}; {} {}; {} files in {}\n",
+               c.is_cascade_set()
+                   ? fmt::format("{} set of {} cascades, {}", to_string(c.relation),
+                                 c.cascades.size(), ocean.describe())
+                   : ocean.describe(),
                ocean.frames, ocean.frames == 1 ? "" : "s", o.impl, o.precision, o.format,
                out.string());
-    if (precision == impls::Precision::f64 && !write_options.float64) {
+    if (w.precision == impls::Precision::f64 && !write_options.float64) {
       fmt::print("note: {} frames store float32; use --format npy to keep fp64\n", o.format);
     }
   }
@@ -357,67 +422,58 @@ int run_synth(const SynthOptions& o) {
       for (const auto& file : files) fs::remove(file, ignored);
     }
   } cleanup{files};
-  validation::MeshSurface first_surface;  // a lattice's frame 0, for mesh.ply
-  for (int f = 0; f < ocean.frames; ++f) {
-    reference::FieldFrame frame = synthesizer.frame(ocean.time(f));
-    if (impl.lattice && f == 0) {
-      first_surface.h = frame.fields.at(Field::height);
-      first_surface.dx = frame.fields.at(Field::disp_x);
-      first_surface.dy = frame.fields.at(Field::disp_y);
+  std::string sum_note;
+  if (c.is_cascade_set()) {
+    // Each cascade under its own folder, and the summed surface (an additive set whose patch
+    // lengths allow it) under sum/; the case's [[cascade]] and [sum] tables read them back.
+    for (std::size_t k = 0; k < c.cascades.size(); ++k) {
+      const std::string folder = fmt::format("cascade{}", k);
+      w.label = c.cascades.size() > 1 ? fmt::format("cascade {}: ", k) : "";
+      write_surface(c.cascade_case(k), out / folder, w, files);
+      c.cascades[k].input = input_in(folder, w);
     }
-    if (png && f == 0) {
-      // The gate judges PNG frames by their quantization (frame_io.hpp): refuse before writing
-      // a PNG whose step would hide every wave vector from it.
-      const validation::IntegerRange range = write_options.png_range;
-      double u = 0;
-      for (Field field : fields) {
-        u = std::max(u, validation::quantization_roundoff(range, 65535.0, frame.fields.at(field)));
+    std::string why;
+    if (const auto summed = c.summed_case(&why)) {
+      w.label = "sum: ";
+      write_surface(*summed, out / "sum", w, files);
+      c.sum = input_in("sum", w);
+      sum_note = fmt::format("; the sum on {}×{} over {:g}×{:g} m in sum/", summed->grid.nx,
+                             summed->grid.ny, summed->grid.lx, summed->grid.ly);
+    } else {
+      c.sum = {};
+      sum_note = fmt::format("; no summed surface: {}", why);
+    }
+  } else {
+    validation::MeshSurface first_surface;  // a lattice's frame 0, for mesh.ply
+    write_surface(ocean, out, w, files, w.impl.lattice ? &first_surface : nullptr);
+    if (w.impl.lattice) {
+      // The points (N × 2, metres, float64) and the first frame as a tileable mesh (the
+      // periodic Delaunay triangulation of the lattice, two triangles a point; docs/lattice.md).
+      const auto& lat = *ocean.lattice;
+      std::vector<double> xy(2 * static_cast<std::size_t>(lat.points()));
+      for (std::int64_t n = 0; n < lat.points(); ++n) {
+        const auto x = lat.point(n);
+        xy[2 * static_cast<std::size_t>(n)] = x[0];
+        xy[2 * static_cast<std::size_t>(n) + 1] = x[1];
       }
-      const double h_rms = rms(frame.fields.at(Field::height));
-      validation::require_judgeable_rounding(ocean, u, h_rms * h_rms);
+      const fs::path points_path = out / "points.npy";
+      validation::write_npy(points_path, validation::NpyArray::from_values(
+                                             {static_cast<std::size_t>(lat.points()), 2},
+                                             std::span<const double>(xy)));
+      files.push_back(points_path);
+      const auto& g = lat.generator();
+      first_surface.mesh = reference::periodic_delaunay(lat.points(), g[0], g[1],
+                                                        lat.lengths()[0], lat.lengths()[1]);
+      const fs::path mesh_path = out / "mesh.ply";
+      validation::write_ply(mesh_path, first_surface);
+      files.push_back(mesh_path);
+      if (!w.quiet) {
+        fmt::print("points → {}; frame 0 as a tileable mesh ({} triangles) → {}\n",
+                   points_path.string(), 2 * lat.points(), mesh_path.string());
+      }
     }
-    const auto& j = frame.fields.at(Field::jacobian);
-    const double min_j = *std::min_element(j.begin(), j.end());
-    for (Field field : reference::kAllFields) {
-      if (std::find(fields.begin(), fields.end(), field) == fields.end()) frame.fields.erase(field);
-    }
-    const auto written = validation::write_frame(out, ocean.grid, frame, f, write_options);
-    files.insert(files.end(), written.begin(), written.end());
-    if (!quiet) {
-      const auto& h = frame.fields.at(Field::height);
-      fmt::print("frame {:4d}  t = {:g} s  rms h = {:.4g} m (4σ = {:.4g} m)  min J = {:.4g}  "
-                 "→ {}{}\n",
-                 f, ocean.time(f), rms(h), 4 * rms(h), min_j, written.front().string(),
-                 written.size() > 1 ? fmt::format(" (+{} files)", written.size() - 1) : "");
-    }
+    c.input = validation::frame_input_spec(w.fields, write_options);
   }
-  if (impl.lattice) {
-    // The points (N × 2, metres, float64) and the first frame as a tileable mesh (the periodic
-    // Delaunay triangulation of the lattice, two triangles a point; docs/lattice.md).
-    const auto& lat = *ocean.lattice;
-    std::vector<double> xy(2 * static_cast<std::size_t>(lat.points()));
-    for (std::int64_t n = 0; n < lat.points(); ++n) {
-      const auto x = lat.point(n);
-      xy[2 * static_cast<std::size_t>(n)] = x[0];
-      xy[2 * static_cast<std::size_t>(n) + 1] = x[1];
-    }
-    const fs::path points_path = out / "points.npy";
-    validation::write_npy(points_path, validation::NpyArray::from_values(
-                                           {static_cast<std::size_t>(lat.points()), 2},
-                                           std::span<const double>(xy)));
-    files.push_back(points_path);
-    const auto& g = lat.generator();
-    first_surface.mesh = reference::periodic_delaunay(lat.points(), g[0], g[1], lat.lengths()[0],
-                                                      lat.lengths()[1]);
-    const fs::path mesh_path = out / "mesh.ply";
-    validation::write_ply(mesh_path, first_surface);
-    files.push_back(mesh_path);
-    if (!quiet) {
-      fmt::print("points → {}; frame 0 as a tileable mesh ({} triangles) → {}\n",
-                 points_path.string(), 2 * lat.points(), mesh_path.string());
-    }
-  }
-  c.input = validation::frame_input_spec(fields, write_options);
   c.directory = out;
   const fs::path case_path = out / "case.toml";
   validation::write_case_file(case_path, c);
@@ -428,23 +484,38 @@ int run_synth(const SynthOptions& o) {
   if (!o.json.empty()) {
     std::vector<std::string> names;
     for (const auto& file : files) names.push_back(file.string());
-    const nlohmann::json document = {{"case", case_path.string()},
-                                     {"description", ocean.describe()},
-                                     {"impl", o.impl},
-                                     {"precision", o.precision},
-                                     {"format", o.format},
-                                     {"n", ocean.is_lattice()
-                                               ? nlohmann::json{ocean.lattice->points()}
-                                               : nlohmann::json{ocean.grid.nx, ocean.grid.ny}},
-                                     {"sampling", ocean.sampling().describe()},
-                                     {"frames", ocean.frames},
-                                     {"files", names},
-                                     {"seconds", seconds}};
+    nlohmann::json document = {{"case", case_path.string()},
+                               {"description", ocean.describe()},
+                               {"impl", o.impl},
+                               {"precision", o.precision},
+                               {"format", o.format},
+                               {"n", ocean.is_lattice()
+                                         ? nlohmann::json{ocean.lattice->points()}
+                                         : nlohmann::json{ocean.grid.nx, ocean.grid.ny}},
+                               {"sampling", ocean.sampling().describe()},
+                               {"frames", ocean.frames},
+                               {"files", names},
+                               {"seconds", seconds}};
+    if (c.is_cascade_set()) {
+      nlohmann::json list = nlohmann::json::array();
+      for (std::size_t k = 0; k < c.cascades.size(); ++k) {
+        const auto& cascade = c.cascades[k];
+        list.push_back({{"n", {cascade.grid.nx, cascade.grid.ny}},
+                        {"length", {cascade.grid.lx, cascade.grid.ly}},
+                        {"band", {cascade.band.lo, std::isinf(cascade.band.hi)
+                                                       ? nlohmann::json(nullptr)
+                                                       : nlohmann::json(cascade.band.hi)}},
+                        {"files", cascade.input.files}});
+      }
+      document["relation"] = to_string(c.relation);
+      document["cascades"] = list;
+      document["sum"] = c.sum.files.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.sum.files);
+    }
     write_json(o.json, document);
-    if (quiet) return 0;
+    if (w.quiet) return 0;
   }
-  fmt::print("wrote {} frame file{} and {} in {:.3g} s\n", files.size(), files.size() == 1 ? "" : "s",
-             case_path.string(), seconds);
+  fmt::print("wrote {} frame file{} and {} in {:.3g} s{}\n", files.size(),
+             files.size() == 1 ? "" : "s", case_path.string(), seconds, sum_note);
   return 0;
 }
 

@@ -225,14 +225,18 @@ SpaceTimeSet SpaceTimeSet::create(const OceanCase& ocean_case, const SpaceTimeBa
           "finite and > 0 s for a space-time surface (ω must be a multiple of 2π/T)", period);
   const double lx = ocean_case.grid.lx, ly = ocean_case.grid.ly;
   const auto ks = band.wave_vectors(lx, ly);
-  const auto spectrum = ocean_case.directional_spectrum();
+  if (ocean_case.is_summed_cascades()) {
+    throw InvalidInput("a space-time surface samples one cascade, not a summed cascade set");
+  }
+  const auto spectrum = ocean_case.directional_spectrum();  // with a cascade's band weight
   // The amplitude exactly as impls::initial_amplitude computes it (synthesizer.cpp), bit for
   // bit: the same Δk, the same Ψ argument and the same product order. Every band vector
   // carries energy (k ≠ 0; a band has no Nyquist row), whatever the case's own grid.
   const double dkx = ocean_case.grid.dkx(), dky = ocean_case.grid.dky();
   auto amplitude = [&](int n, int m) {
     const double psi = spectrum->psi(n * dkx, m * dky);
-    const auto xi = reference::wave_noise(ocean_case.seed, n, m);
+    const auto xi = reference::wave_noise(ocean_case.seed, n, m, 0,
+                                          static_cast<std::uint32_t>(ocean_case.cascade));
     return std::complex<double>(xi.xi1, xi.xi2) * std::sqrt(0.5 * psi * dkx * dky * 0.5);
   };
   const double omega0 = 2 * std::numbers::pi / period;

@@ -1,11 +1,87 @@
 #include "swell/reference/ocean_case.hpp"
 
 #include <cmath>
+#include <memory>
 #include <fmt/format.h>
 
 #include "swell/reference/errors.hpp"
 
 namespace swell::reference {
+namespace {
+
+// Ψ times a cascade's band weight w(|k|)². Its omnidirectional spectrum stays the sea's: the
+// weight depends on |k| alone, so a cascade's S_c(ω) would be w(k(ω))² S(ω), but what reads it
+// (the validity rule's m0, Tp) wants the sea.
+class BandedSpectrum final : public DirectionalSpectrum {
+ public:
+  BandedSpectrum(DirectionalSpectrumPtr sea, BandWeight band) : sea_(std::move(sea)), band_(band) {}
+  double psi(double kx, double ky) const override {
+    const double w2 = band_.weight_squared(std::hypot(kx, ky));
+    return w2 == 0 ? 0.0 : w2 * sea_->psi(kx, ky);
+  }
+  const Dispersion& dispersion() const override { return sea_->dispersion(); }
+  const FrequencySpectrum& omnidirectional() const override { return sea_->omnidirectional(); }
+  double mean_direction() const override { return sea_->mean_direction(); }
+
+ private:
+  DirectionalSpectrumPtr sea_;
+  BandWeight band_;
+};
+
+// The summed surface of an additive set on its fine grid (lengths lx × ly): the wave vector
+// K = (n Δkx, m Δky) carries, for every cascade whose grid holds K (K·L_c/2π integer, inside
+// its band of indices, not its Nyquist), w_c² Ψ(K) Δk_c²; divided by the fine Δk² so that the
+// checks' μ = ½(Ψ(k) + Ψ(−k)) Δk² comes out as the sum of the cascades' μ_c.
+class SummedCascadeSpectrum final : public DirectionalSpectrum {
+ public:
+  SummedCascadeSpectrum(DirectionalSpectrumPtr sea, std::vector<CascadeMember> members, double lx,
+                        double ly)
+      : sea_(std::move(sea)), members_(std::move(members)), lx_(lx), ly_(ly) {}
+  double psi(double kx, double ky) const override {
+    double total = 0;
+    const double fine_dk2 = (2 * M_PI / lx_) * (2 * M_PI / ly_);
+    for (const auto& c : members_) {
+      const double x = kx * c.grid.lx / (2 * M_PI), y = ky * c.grid.ly / (2 * M_PI);
+      const double n = std::round(x), m = std::round(y);
+      if (std::abs(x - n) > 1e-6 || std::abs(y - m) > 1e-6) continue;
+      if (n < -(c.grid.nx / 2) || n >= (c.grid.nx + 1) / 2 || m < -(c.grid.ny / 2) ||
+          m >= (c.grid.ny + 1) / 2 || !c.grid.carries_energy(int(n), int(m))) {
+        continue;
+      }
+      const double w2 = c.band.weight_squared(std::hypot(kx, ky));
+      if (w2 > 0) total += w2 * sea_->psi(kx, ky) * c.grid.dkx() * c.grid.dky() / fine_dk2;
+    }
+    return total;
+  }
+  const Dispersion& dispersion() const override { return sea_->dispersion(); }
+  const FrequencySpectrum& omnidirectional() const override { return sea_->omnidirectional(); }
+  double mean_direction() const override { return sea_->mean_direction(); }
+
+ private:
+  DirectionalSpectrumPtr sea_;
+  std::vector<CascadeMember> members_;
+  double lx_, ly_;
+};
+
+}  // namespace
+
+DirectionalSpectrumPtr OceanCase::directional_spectrum() const {
+  auto sea = sea_spectrum();
+  if (!members.empty()) {
+    return std::make_shared<SummedCascadeSpectrum>(std::move(sea), members, grid.lx, grid.ly);
+  }
+  if (!band.everywhere()) return std::make_shared<BandedSpectrum>(std::move(sea), band);
+  return sea;
+}
+
+OceanCase OceanCase::member_case(const CascadeMember& member) const {
+  OceanCase out = *this;
+  out.members.clear();
+  out.grid = member.grid;
+  out.band = member.band;
+  out.cascade = member.cascade;
+  return out;
+}
 
 ModelSpec OceanCase::full_spectrum_spec() const {
   ModelSpec spec = spectrum;
@@ -29,7 +105,7 @@ double OceanCase::omega(double k) const {
   return quantize_omega(Dispersion::finite_depth(depth, gravity).omega(k), loop_period);
 }
 
-DirectionalSpectrumPtr OceanCase::directional_spectrum() const {
+DirectionalSpectrumPtr OceanCase::sea_spectrum() const {
   const auto frequency = make_frequency_spectrum(full_spectrum_spec());
   if (spectrum.model == "phillips") {
     if (!spreading.model.empty()) {
@@ -75,6 +151,27 @@ void OceanCase::validate() const {
   require(std::isfinite(choppiness), "choppiness", "finite", choppiness);
   require(std::isfinite(loop_period) && loop_period >= 0, "loop_period", "finite and ≥ 0 (s)",
           loop_period);
+  require(cascade >= 0, "cascade", "≥ 0 (the index that keys its random numbers)", cascade);
+  band.validate(fmt::format("cascade {}", cascade));
+  if (!members.empty()) {
+    if (lattice) throw InvalidInput("a summed cascade set is a grid, not a lattice");
+    Grid fine;
+    std::string why;
+    for (const auto& m : members) {
+      (void)Grid::create(m.grid.nx, m.grid.ny, m.grid.lx, m.grid.ly);
+      m.band.validate(fmt::format("cascade {}", m.cascade));
+    }
+    if (!summed_grid(members, fine, &why)) {
+      throw InvalidInput("the cascades cannot be summed on one grid: " + why);
+    }
+    if (fine.nx != grid.nx || fine.ny != grid.ny || std::abs(fine.lx - grid.lx) > 1e-9 * grid.lx ||
+        std::abs(fine.ly - grid.ly) > 1e-9 * grid.ly) {
+      throw InvalidInput(fmt::format(
+          "the summed surface of these cascades is {}×{} over {:g}×{:g} m (the finest spacing "
+          "over the largest patch), not the case's {}×{} over {:g}×{:g} m",
+          fine.nx, fine.ny, fine.lx, fine.ly, grid.nx, grid.ny, grid.lx, grid.ly));
+    }
+  }
   (void)directional_spectrum();  // the spectrum and spreading parameters
 }
 
@@ -93,6 +190,11 @@ std::string OceanCase::describe() const {
     out += fmt::format(", {}×{} over {:g}×{:g} m", grid.nx, grid.ny, grid.lx, grid.ly);
   }
   if (std::isfinite(depth)) out += fmt::format(", depth {:g} m", depth);
+  if (!members.empty()) {
+    out += fmt::format(", the sum of {} cascades", members.size());
+  } else if (cascade != 0 || !band.everywhere()) {
+    out += fmt::format(", cascade {} band {}", cascade, band.describe());
+  }
   return out;
 }
 

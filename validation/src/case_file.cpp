@@ -32,7 +32,8 @@ using reference::Field;
 using reference::ModelSpec;
 
 const std::vector<std::string> kSections = {"grid",      "time",      "physics", "spectrum",
-                                            "spreading", "synthesis", "input",   "sampling"};
+                                            "spreading", "synthesis", "input",   "sampling",
+                                            "cascades",  "cascade",   "sum"};
 // The parameters every frequency model takes, which a case holds once ([physics],
 // wind_dir_deg) instead of in [spectrum].
 const std::set<std::string> kCaseLevel = {"gravity", "depth", "wind_dir"};
@@ -353,6 +354,171 @@ void write_parameters(std::string& out, const ModelSpec& spec) {
   }
 }
 
+// The keys of an input section (`valid`: files, raw_type, value_range, the field names, and
+// whatever else the section's reader takes itself).
+void read_input_keys(const Reporter& report, const Section& input,
+                     const std::vector<std::string>& valid, InputSpec& out) {
+  {
+    input.allow_only(valid);
+    if (auto files = input.string("files")) {
+      if (files->empty()) input.fail("files", "must not be empty");
+      try {
+        (void)frame_file_name(*files, 0);
+      } catch (const InvalidInput& e) {
+        input.fail("files", e.what());
+      }
+      std::string ext = fs::path(*files).extension().string();
+      for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+      if (ext != ".exr" && ext != ".tif" && ext != ".tiff" && ext != ".png" && ext != ".npy" &&
+          ext != ".raw") {
+        input.fail("files", fmt::format("extension '{}' is not one swell reads (.exr, .tif, .tiff, "
+                                        ".png, .npy, .raw)",
+                                        ext));
+      }
+      out.files = *files;
+    }
+    std::map<std::string, Field> used;
+    for (Field field : reference::kAllFields) {
+      const std::string key = reference::field_name(field);
+      auto channel = input.string(key);
+      if (!channel) continue;
+      if (channel->empty()) input.fail(key, "must name a channel (or file suffix), not \"\"");
+      if (auto [it, fresh] = used.emplace(*channel, field); !fresh) {
+        input.fail(key, fmt::format("channel \"{}\" is already given to {}", *channel,
+                                    reference::field_name(it->second)));
+      }
+      out.channels[field] = *channel;
+    }
+    if (auto raw_type = input.string("raw_type")) {
+      if (*raw_type != "float32" && *raw_type != "float64") {
+        input.fail("raw_type", "must be \"float32\" or \"float64\" (got \"" + *raw_type + "\")");
+      }
+      out.raw_type = *raw_type;
+    }
+    if (input.present() && out.channels.empty()) {
+      std::vector<std::string> fields;
+      for (Field field : reference::kAllFields) fields.push_back(reference::field_name(field));
+      report.fail(fmt::format("[{}] names no field; give at least one of {} with its channel "
+                              "(EXR/TIFF/PNG) or file suffix (.npy/.raw)",
+                              input.name(), join(fields)));
+    }
+    out.value_ranges = read_value_ranges(input, out.channels);
+  }
+}
+
+std::vector<std::string> input_keys() {
+  std::vector<std::string> valid = {"files", "raw_type", "value_range"};
+  for (Field field : reference::kAllFields) valid.push_back(reference::field_name(field));
+  return valid;
+}
+
+// [input] or [sum]: the frames' pattern, one channel (or file suffix) per field provided.
+InputSpec read_input(const Reporter& report, const Section& input) {
+  InputSpec out;
+  read_input_keys(report, input, input_keys(), out);
+  return out;
+}
+
+// [cascades] relation, crossover and the [[cascade]] tables (docs/cascades.md): each its grid
+// (n, length), its band [lo, hi) in rad/m, and its frames as in [input]; [sum] the summed
+// surface's frames. `ocean` holds what the cascades share; it takes cascade 0's grid.
+void read_cascades(const Reporter& report, const toml::table& document, CaseFile& out) {
+  const auto* settings = document.get_as<toml::table>("cascades");
+  const auto* list = document.get_as<toml::array>("cascade");
+  const Section sum(report, "sum", document.get_as<toml::table>("sum"));
+  if (!settings && !list) {
+    if (sum.present()) {
+      report.fail("[sum] holds the summed surface of a cascade set; this case has no "
+                  "[cascades] and [[cascade]] tables");
+    }
+    return;
+  }
+  const Section cascades(report, "cascades", settings);
+  if (!settings) report.fail("[[cascade]] tables need a [cascades] section (relation = \"additive\" | \"nested\")");
+  if (!list || list->empty()) {
+    report.fail("[cascades] needs at least one [[cascade]] table (n, length, band, files and "
+                "channels)");
+  }
+  cascades.allow_only({"relation", "crossover"});
+  const std::string relation = cascades.string("relation").value_or("additive");
+  if (relation == "additive") {
+    out.relation = reference::CascadeRelation::additive;
+  } else if (relation == "nested") {
+    out.relation = reference::CascadeRelation::nested;
+  } else {
+    cascades.fail("relation", fmt::format("must be \"additive\" or \"nested\" (got \"{}\")",
+                                          relation));
+  }
+  const bool additive = out.relation == reference::CascadeRelation::additive;
+  const double crossover = cascades.number_or("crossover", 1);
+  if (!(std::isfinite(crossover) && crossover >= 1)) {
+    cascades.fail("crossover", fmt::format("must be a ratio ≥ 1 (1: hard cuts; got {:g})",
+                                           crossover));
+  }
+  if (!additive && cascades.has("crossover")) {
+    cascades.fail("crossover", "weights the bands of an additive set; nested bands are not added");
+  }
+  auto keys = input_keys();
+  for (const char* key : {"n", "length", "band"}) keys.push_back(key);
+  for (std::size_t c = 0; c < list->size(); ++c) {
+    const Section table(report, fmt::format("cascade {}", c), list->get(c)->as_table());
+    CascadeInput cascade;
+    cascade.index = int(c);
+    read_input_keys(report, table, keys, cascade.input);
+    const auto n = table.integer_pair("n");
+    if (!n) table.missing("n", "samples [nx, ny]");
+    const auto length = table.number_pair("length");
+    if (!length) table.missing("length", "patch size [lx, ly] in m");
+    auto& grid = cascade.grid;
+    grid.nx = checked_int(table, "n", (*n)[0], 1);
+    grid.ny = checked_int(table, "n", (*n)[1], 1);
+    grid.lx = (*length)[0];
+    grid.ly = (*length)[1];
+    try {
+      (void)reference::Grid::create(grid.nx, grid.ny, grid.lx, grid.ly);
+    } catch (const InvalidInput& e) {
+      table.fail("n", e.what());
+    }
+    if (const auto band = table.number_pair("band")) {
+      if (!table.find("band")->is_array()) table.wrong_type("band", "an array [lo, hi] of |k| in rad/m");
+      cascade.band = reference::BandWeight{(*band)[0], (*band)[1], crossover};
+      try {
+        cascade.band.validate(fmt::format("cascade {}", c));
+      } catch (const InvalidInput& e) {
+        table.fail("band", e.what());
+      }
+    } else if (additive && list->size() > 1) {
+      table.missing("band", "[lo, hi): the |k| in rad/m this cascade carries");
+    }
+    if (!cascade.input.channels.empty() && cascade.input.files.empty()) {
+      table.missing("files", "the pattern of this cascade's frames");
+    }
+    out.cascades.push_back(std::move(cascade));
+  }
+  if (!additive) {
+    for (const auto& c : out.cascades) {
+      const auto& first = out.cascades.front().grid;
+      if (c.grid.lx != first.lx || c.grid.ly != first.ly) {
+        report.fail(fmt::format(
+            "[cascade {}] length: nested bands are two samplings of one patch (the low band's "
+            "waves are the broad band's at the same k); its {:g}×{:g} m differs from cascade "
+            "0's {:g}×{:g} m",
+            c.index, c.grid.lx, c.grid.ly, first.lx, first.ly));
+      }
+    }
+  }
+  out.sum = read_input(report, sum);
+  if (sum.present()) {
+    if (!additive) sum.fail("files", "nested bands are not added: a nested set has no summed surface");
+    if (out.sum.files.empty()) sum.missing("files", "the pattern of the summed surface's frames");
+    reference::Grid fine;
+    std::string why;
+    if (!reference::summed_grid(out.members(), fine, &why)) {
+      sum.fail("files", "the cascades cannot be summed on one grid: " + why);
+    }
+  }
+}
+
 }  // namespace
 
 CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
@@ -370,6 +536,14 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
     if (std::find(kSections.begin(), kSections.end(), name) == kSections.end()) {
       report.fail(key.source(), fmt::format("unknown section [{}]; valid sections: {}", name,
                                             join(kSections)));
+    }
+    if (name == "cascade") {
+      if (!node.is_array_of_tables()) {
+        report.fail(key.source(), fmt::format("'cascade' must be an array of tables [[cascade]], "
+                                              "one per cascade, not {}",
+                                              type_name(node)));
+      }
+      continue;
     }
     if (!node.is_table()) {
       report.fail(key.source(), fmt::format("'{}' must be a section [{}] (a table), not {}", name,
@@ -398,16 +572,31 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
                   "belongs to kind = \"lattice\" (a grid's samples are [grid] n)");
   }
 
-  // [grid] n, length: required (length only for a lattice).
+  // [grid] n, length: required (length only for a lattice); a cascade set gives a grid per
+  // [[cascade]] instead.
   const Section grid = section("grid");
-  if (!grid.present()) {
+  const bool cascade_set = document.contains("cascades") || document.contains("cascade");
+  if (cascade_set) {
+    if (grid.present()) {
+      report.fail("[grid]: a cascade set gives each cascade's grid (n, length) in its "
+                  "[[cascade]] table; remove [grid]");
+    }
+    if (document.contains("input")) {
+      report.fail("[input]: a cascade set gives each cascade's frames (files, channels) in its "
+                  "[[cascade]] table, and the summed surface's in [sum]; remove [input]");
+    }
+    if (lattice) sampling.fail("kind", "cascades are grids; a lattice samples one patch");
+  } else if (!grid.present()) {
     report.fail(lattice ? "missing section [grid] (length = [lx, ly] in m: the lattice's patch)"
                         : "missing section [grid] (n = [nx, ny], length = [lx, ly] in m)");
   }
   grid.allow_only({"n", "length"});
-  const auto length = grid.number_pair("length");
+  const auto length = cascade_set ? std::optional<std::array<double, 2>>{{1.0, 1.0}}
+                                  : grid.number_pair("length");
   if (!length) grid.missing("length", "patch size [lx, ly] in m");
-  if (lattice) {
+  if (cascade_set) {
+    // cascade 0's grid, once [[cascade]] is read
+  } else if (lattice) {
     if (grid.has("n")) {
       grid.fail("n", "a lattice case has no grid samples: its points are [sampling] points");
     }
@@ -519,56 +708,23 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
   }
 
   // [input]: the frames' pattern, one channel (or file suffix) per field provided.
-  const Section input = section("input");
-  {
-    std::vector<std::string> valid = {"files", "raw_type", "value_range"};
-    for (Field field : reference::kAllFields) valid.push_back(reference::field_name(field));
-    input.allow_only(valid);
-    if (auto files = input.string("files")) {
-      if (files->empty()) input.fail("files", "must not be empty");
-      try {
-        (void)frame_file_name(*files, 0);
-      } catch (const InvalidInput& e) {
-        input.fail("files", e.what());
-      }
-      std::string ext = fs::path(*files).extension().string();
-      for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-      if (ext != ".exr" && ext != ".tif" && ext != ".tiff" && ext != ".png" && ext != ".npy" &&
-          ext != ".raw") {
-        input.fail("files", fmt::format("extension '{}' is not one swell reads (.exr, .tif, .tiff, "
-                                        ".png, .npy, .raw)",
-                                        ext));
-      }
-      out.input.files = *files;
-    }
-    std::map<std::string, Field> used;
-    for (Field field : reference::kAllFields) {
-      const std::string key = reference::field_name(field);
-      auto channel = input.string(key);
-      if (!channel) continue;
-      if (channel->empty()) input.fail(key, "must name a channel (or file suffix), not \"\"");
-      if (auto [it, fresh] = used.emplace(*channel, field); !fresh) {
-        input.fail(key, fmt::format("channel \"{}\" is already given to {}", *channel,
-                                    reference::field_name(it->second)));
-      }
-      out.input.channels[field] = *channel;
-    }
-    if (auto raw_type = input.string("raw_type")) {
-      if (*raw_type != "float32" && *raw_type != "float64") {
-        input.fail("raw_type", "must be \"float32\" or \"float64\" (got \"" + *raw_type + "\")");
-      }
-      out.input.raw_type = *raw_type;
-    }
-    if (input.present() && out.input.channels.empty()) {
-      report.fail(fmt::format("[input] names no field; give at least one of {} with its channel "
-                              "(EXR/TIFF/PNG) or file suffix (.npy/.raw)",
-                              join(std::vector<std::string>(valid.begin() + 3, valid.end()))));
-    }
-    out.input.value_ranges = read_value_ranges(input, out.input.channels);
-  }
+  out.input = read_input(report, section("input"));
+
+  read_cascades(report, document, out);
+  if (out.is_cascade_set()) ocean.grid = out.cascades.front().grid;
 
   try {
     ocean.validate();
+    for (std::size_t c = 0; c < out.cascades.size(); ++c) {
+      try {
+        out.cascade_case(c).validate();
+      } catch (const InvalidInput& e) {
+        throw InvalidInput(fmt::format("[cascade {}]: {}", c, e.what()));
+      }
+    }
+    if (out.is_cascade_set() && out.relation == reference::CascadeRelation::additive) {
+      reference::require_bands_share_out(ocean, out.members());
+    }
   } catch (const InvalidInput& e) {
     report.fail(e.what());
   } catch (const NumericalError& e) {
@@ -579,6 +735,48 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
                             e.what()));
   }
   return out;
+}
+
+reference::OceanCase CaseFile::cascade_case(std::size_t c) const {
+  const auto& cascade = cascades.at(c);
+  reference::OceanCase out = ocean;
+  out.members.clear();
+  out.grid = cascade.grid;
+  out.band = cascade.band;
+  out.cascade = relation == reference::CascadeRelation::additive ? cascade.index : 0;
+  return out;
+}
+
+std::vector<reference::CascadeMember> CaseFile::members() const {
+  std::vector<reference::CascadeMember> out;
+  for (std::size_t c = 0; c < cascades.size(); ++c) {
+    const auto sea = cascade_case(c);
+    out.push_back({sea.cascade, sea.grid, sea.band});
+  }
+  return out;
+}
+
+std::optional<reference::OceanCase> CaseFile::summed_case(std::string* why) const {
+  if (!is_cascade_set() || relation != reference::CascadeRelation::additive) {
+    if (why) *why = is_cascade_set() ? "nested bands are not added" : "not a cascade set";
+    return std::nullopt;
+  }
+  reference::Grid fine;
+  const auto list = members();
+  if (!reference::summed_grid(list, fine, why)) return std::nullopt;
+  reference::OceanCase out = ocean;
+  out.grid = fine;
+  out.band = {};
+  out.cascade = 0;
+  out.members = list;
+  return out;
+}
+
+void require_single_grid(const CaseFile& case_file, const std::string& command) {
+  if (!case_file.is_cascade_set()) return;
+  throw InvalidInput(fmt::format("{} takes a single-grid case; this one is a set of {} cascades "
+                                 "(swell synth makes them and swell gate judges them)",
+                                 command, case_file.cascades.size()));
 }
 
 CaseFile read_case_file(const fs::path& path) {
@@ -595,13 +793,46 @@ CaseFile read_case_file(const fs::path& path) {
   return parse_case_toml(text.str(), path);
 }
 
+// The keys of an input section under `header` ("[input]", "[sum]"; "" inside a [[cascade]]
+// table already open), nothing when it names no frames.
+void write_input(std::string& out, const std::string& header, const InputSpec& input) {
+  if (input.files.empty() && input.channels.empty()) return;
+  if (!header.empty()) out += "\n" + header + "\n";
+
+    if (!input.files.empty()) out += fmt::format("files = {}\n", toml_string(input.files));
+    for (const auto& [field, channel] : input.channels) {
+      out += fmt::format("{} = {}\n", reference::field_name(field), toml_string(channel));
+    }
+    if (input.raw_type != "float32") out += fmt::format("raw_type = {}\n", toml_string(input.raw_type));
+    if (!input.value_ranges.empty()) {
+      const IntegerRange first = input.value_ranges.begin()->second;
+      bool one_for_all = input.value_ranges.size() == input.channels.size();
+      for (const auto& [field, range] : input.value_ranges) one_for_all = one_for_all && range == first;
+      auto pair = [](const IntegerRange& r) {
+        return fmt::format("[{}, {}]", toml_number(r.low), toml_number(r.high));
+      };
+      if (one_for_all) {
+        out += fmt::format("value_range = {}\n", pair(first));
+      } else {
+        std::string table;
+        for (const auto& [field, range] : input.value_ranges) {
+          table += fmt::format("{}{} = {}", table.empty() ? "" : ", ", reference::field_name(field),
+                               pair(range));
+        }
+        out += fmt::format("value_range = {{ {} }}\n", table);
+      }
+    }
+}
+
 std::string case_toml(const CaseFile& case_file) {
   const auto& c = case_file.ocean;
   std::string out = "# swell case file (docs/case_files.md)\n";
   std::string summary = c.describe();
   std::replace(summary.begin(), summary.end(), '\n', ' ');  // stays one comment line
   out += fmt::format("# {}\n\n", summary);
-  if (c.is_lattice()) {
+  if (case_file.is_cascade_set()) {
+    // [[cascade]] tables below
+  } else if (c.is_lattice()) {
     const auto& g = c.lattice->generator();
     out += fmt::format("[grid]\nlength = [{}, {}]\n\n", toml_number(c.grid.lx),
                        toml_number(c.grid.ly));
@@ -635,32 +866,23 @@ std::string case_toml(const CaseFile& case_file) {
   out += fmt::format("[synthesis]\nchoppiness = {}\nloop_period = {}\nseed = {}\n",
                      toml_number(c.choppiness), toml_number(c.loop_period), seed);
 
-  const auto& input = case_file.input;
-  if (!input.files.empty() || !input.channels.empty()) {
-    out += "\n[input]\n";
-    if (!input.files.empty()) out += fmt::format("files = {}\n", toml_string(input.files));
-    for (const auto& [field, channel] : input.channels) {
-      out += fmt::format("{} = {}\n", reference::field_name(field), toml_string(channel));
-    }
-    if (input.raw_type != "float32") out += fmt::format("raw_type = {}\n", toml_string(input.raw_type));
-    if (!input.value_ranges.empty()) {
-      const IntegerRange first = input.value_ranges.begin()->second;
-      bool one_for_all = input.value_ranges.size() == input.channels.size();
-      for (const auto& [field, range] : input.value_ranges) one_for_all = one_for_all && range == first;
-      auto pair = [](const IntegerRange& r) {
-        return fmt::format("[{}, {}]", toml_number(r.low), toml_number(r.high));
-      };
-      if (one_for_all) {
-        out += fmt::format("value_range = {}\n", pair(first));
-      } else {
-        std::string table;
-        for (const auto& [field, range] : input.value_ranges) {
-          table += fmt::format("{}{} = {}", table.empty() ? "" : ", ", reference::field_name(field),
-                               pair(range));
-        }
-        out += fmt::format("value_range = {{ {} }}\n", table);
+  write_input(out, "[input]", case_file.input);
+  if (case_file.is_cascade_set()) {
+    out += fmt::format("\n[cascades]\nrelation = \"{}\"\n", to_string(case_file.relation));
+    const double crossover = case_file.cascades.front().band.crossover;
+    if (crossover != 1) out += fmt::format("crossover = {}\n", toml_number(crossover));
+    for (const auto& cascade : case_file.cascades) {
+      out += fmt::format("\n[[cascade]]\nn = [{}, {}]\nlength = [{}, {}]\n", cascade.grid.nx,
+                         cascade.grid.ny, toml_number(cascade.grid.lx),
+                         toml_number(cascade.grid.ly));
+      if (!cascade.band.everywhere()) {
+        out += fmt::format("band = [{}, {}]\n", toml_number(cascade.band.lo),
+                           std::isinf(cascade.band.hi) ? std::string("inf")
+                                                       : toml_number(cascade.band.hi));
       }
+      write_input(out, "", cascade.input);
     }
+    write_input(out, "[sum]", case_file.sum);
   }
   return out;
 }

@@ -5,16 +5,20 @@
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
+#include <optional>
 #include <thread>
 
 #include "swell/reference/errors.hpp"
 #include "swell/reference/sampling_validity.hpp"
+#include "swell/validation/cascade_checks.hpp"
 #include "swell/validation/frame_io.hpp"
 #include "swell/validation/ocean_checks.hpp"
 #include "swell/validation/report.hpp"
@@ -266,9 +270,12 @@ std::size_t check_order(const std::string& name) {
   return it == names.end() ? names.size() : std::size_t(it - names.begin());
 }
 
+// `alpha_per_check`, when given (a cascade set shares α over all its surfaces), replaces
+// options.alpha / (the statistical checks of these frames).
 GateReport judge(const CaseFile& case_file, const reference::FrameSequence& frames,
                  const reference::FrameSequence& ends, const GateOptions& options,
-                 Clock::time_point start) {
+                 Clock::time_point start,
+                 double alpha_per_check = std::numeric_limits<double>::quiet_NaN()) {
   if (!(options.alpha > 0 && options.alpha < 1)) {
     throw InvalidInput(fmt::format("alpha (the gate's family-wise false-alarm rate) must be in "
                                    "(0, 1) (got {:g})",
@@ -289,7 +296,8 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
   const auto shared = statistical_checks(case_file.scale, frames.frames.size());
   report.alpha = options.alpha;
   report.statistical_checks = int(shared.size());
-  report.alpha_per_check = options.alpha / double(shared.size());
+  report.alpha_per_check = std::isnan(alpha_per_check) ? options.alpha / double(shared.size())
+                                                      : alpha_per_check;
 
   OceanCheckOptions check_options;
   check_options.alpha = report.alpha_per_check;
@@ -351,7 +359,135 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
   return report;
 }
 
+// ------------------------------------------------------------------ cascade sets
+
+// A cascade's (or the sum's) own case file: its case, its frames' input, the set's scale.
+CaseFile surface_case_file(const CaseFile& set, const reference::OceanCase& ocean,
+                           const InputSpec& input) {
+  CaseFile out;
+  out.ocean = ocean;
+  out.input = input;
+  out.scale = set.scale;
+  out.directory = set.directory;
+  return out;
+}
+
+// The surfaces of a set that have frames: each cascade's (an empty sequence when the case gives
+// none) and the sum's (null when none).
+GateReport judge_cascades(const CaseFile& case_file,
+                          const std::vector<reference::FrameSequence>& cascades,
+                          const std::vector<reference::FrameSequence>& cascade_ends,
+                          const reference::FrameSequence* sum,
+                          const reference::FrameSequence* sum_ends, const GateOptions& options,
+                          Clock::time_point start) {
+  if (!(options.alpha > 0 && options.alpha < 1)) {
+    throw InvalidInput(fmt::format("alpha (the gate's family-wise false-alarm rate) must be in "
+                                   "(0, 1) (got {:g})",
+                                   options.alpha));
+  }
+  const bool additive = case_file.relation == reference::CascadeRelation::additive;
+  std::vector<std::size_t> given;
+  for (std::size_t c = 0; c < cascades.size(); ++c) {
+    if (!cascades[c].frames.empty()) given.push_back(c);
+  }
+  std::optional<reference::OceanCase> summed;
+  if (sum) {
+    std::string why;
+    summed = case_file.summed_case(&why);
+    if (!summed) throw InvalidInput("[sum]: the cascades cannot be summed on one grid: " + why);
+  }
+  if (given.empty() && !sum) {
+    throw InvalidInput("the cascade set names no frames: give files and channels in each "
+                       "[[cascade]] table, or the summed surface's in [sum]");
+  }
+  // One family-wise α over every statistical check of every surface (Bonferroni): each
+  // cascade's ordinary ones and its band.missing, the set's energy and independence, and the
+  // sum's.
+  const bool free = case_file.scale == SpectrumScale::free;
+  int statistical = 0;
+  for (auto c : given) {
+    statistical += int(statistical_checks(case_file.scale, cascades[c].frames.size()).size());
+    if (additive) ++statistical;
+  }
+  const bool set_checks = given.size() >= 2;
+  if (set_checks && additive) statistical += free ? 1 : 2;
+  if (sum) statistical += int(statistical_checks(case_file.scale, sum->frames.size()).size()) + 1;
+  const double alpha_per_check = options.alpha / double(std::max(1, statistical));
+
+  GateReport report;
+  report.subject = fmt::format("{} set of {} cascades: {}", to_string(case_file.relation),
+                               case_file.cascades.size(), case_file.ocean.describe());
+  report.alpha = options.alpha;
+  report.alpha_per_check = alpha_per_check;
+  report.statistical_checks = statistical;
+  std::vector<std::string> samples;
+  auto add_surface = [&](const std::string& name, const CaseFile& surface,
+                         const reference::FrameSequence& frames,
+                         const reference::FrameSequence& ends) {
+    report_progress(options, fmt::format("judging {}…", name));
+    GateReport part = judge(surface, frames, ends, options, start, alpha_per_check);
+    for (auto& result : part.results) {
+      result.check = name + "." + result.check;
+      report.results.push_back(std::move(result));
+    }
+    for (auto& entry : part.skipped) report.skipped.push_back(name + "." + entry);
+    if (report.frames == 0) {
+      report.frames = part.frames;
+      report.nx = part.nx;
+      report.ny = part.ny;
+      report.fields = part.fields;
+      report.fitted_scale = part.fitted_scale;
+    }
+    report.unit_roundoff = std::max(report.unit_roundoff, part.unit_roundoff);
+    samples.push_back(fmt::format("{} {}", name, part.samples));
+  };
+  std::vector<CascadeView> views;
+  std::vector<reference::OceanCase> oceans(cascades.size());
+  for (auto c : given) oceans[c] = case_file.cascade_case(c);
+  for (auto c : given) {
+    const std::string name = fmt::format("cascade{}", c);
+    add_surface(name, surface_case_file(case_file, oceans[c], case_file.cascades[c].input),
+                cascades[c], cascade_ends[c]);
+    views.push_back({int(c), &oceans[c], &cascades[c]});
+    if (additive) {
+      for (auto& result : check_cascade_band(views.back(), case_file.members(), alpha_per_check)) {
+        report.results.push_back(std::move(result));
+      }
+    }
+  }
+  if (set_checks) {
+    if (additive) {
+      if (!free) report.results.push_back(check_cascades_energy(views, alpha_per_check));
+      report.results.push_back(check_cascades_independence(views, alpha_per_check));
+      report.results.push_back(check_cascades_patch(views));
+    } else {
+      report.results.push_back(check_cascades_nested(views));
+    }
+  } else if (!given.empty() && case_file.cascades.size() >= 2) {
+    report.skipped.push_back("cascades: needs the frames of two or more cascades");
+  }
+  if (sum) {
+    add_surface("sum", surface_case_file(case_file, *summed, case_file.sum), *sum, *sum_ends);
+    for (auto& result : check_summed_bands(*summed, *sum, alpha_per_check)) {
+      report.results.push_back(std::move(result));
+    }
+  }
+  report.samples = fmt::format("{}", fmt::join(samples, ", "));
+  report.seconds = seconds_since(start);
+  return report;
+}
+
 }  // namespace
+
+GateReport run_cascade_gate(const CaseFile& case_file,
+                            const std::vector<reference::FrameSequence>& cascades,
+                            const reference::FrameSequence* sum, const GateOptions& options) {
+  if (cascades.size() != case_file.cascades.size()) {
+    throw InvalidInput(fmt::format("the set has {} cascades; frames were given for {}",
+                                   case_file.cascades.size(), cascades.size()));
+  }
+  return judge_cascades(case_file, cascades, cascades, sum, sum, options, Clock::now());
+}
 
 bool GateReport::passed() const {
   return std::all_of(results.begin(), results.end(), [](const CheckResult& r) { return r.passed; });
@@ -366,6 +502,48 @@ GateReport run_gate(const std::filesystem::path& case_path, const GateOptions& o
   const auto start = Clock::now();
   const int threads = resolved_threads(options.threads);
   const CaseFile case_file = read_case_file(case_path);
+  if (case_file.is_cascade_set()) {
+    if (!options.input_pattern.empty()) {
+      throw InvalidInput("--input replaces a single surface's [input] files; a cascade set names "
+                         "each cascade's frames in its [[cascade]] table and the sum's in [sum]");
+    }
+    OIIO::attribute("threads", threads);
+    OIIO::attribute("exr_threads", threads);
+    std::vector<reference::FrameSequence> all(case_file.cascades.size()),
+        ends(case_file.cascades.size());
+    auto read_surface = [&](const reference::OceanCase& ocean, const InputSpec& input,
+                            reference::FrameSequence& frames, reference::FrameSequence& end) {
+      const CaseFile surface = surface_case_file(case_file, ocean, input);
+      const auto sampling = ocean.sampling();
+      const double bytes = double(sampling.size()) * (24.0 * ocean.frames + 96 + 64 + 24.0 * threads);
+      reference::require_memory(std::uint64_t(std::min(bytes, 1.8e19)), "swell gate",
+                                fmt::format("{} frames on a {}", ocean.frames, sampling.describe()));
+      reference::require_valid_sampling(ocean, reference::kFloat64);
+      report_progress(options, fmt::format("reading {} frame{} on a {}…", ocean.frames,
+                                           ocean.frames == 1 ? "" : "s", sampling.describe()));
+      GateFrames read = read_gate_frames(surface, "");
+      frames = std::move(read.all);
+      end = std::move(read.ends);
+    };
+    for (std::size_t c = 0; c < case_file.cascades.size(); ++c) {
+      if (case_file.cascades[c].input.files.empty()) continue;
+      read_surface(case_file.cascade_case(c), case_file.cascades[c].input, all[c], ends[c]);
+    }
+    reference::FrameSequence sum, sum_ends;
+    const bool has_sum = !case_file.sum.files.empty();
+    if (has_sum) {
+      std::string why;
+      const auto summed = case_file.summed_case(&why);
+      if (!summed) throw InvalidInput("[sum]: the cascades cannot be summed on one grid: " + why);
+      read_surface(*summed, case_file.sum, sum, sum_ends);
+    }
+    const double reading = seconds_since(start);
+    GateReport report = judge_cascades(case_file, all, ends, has_sum ? &sum : nullptr,
+                                       has_sum ? &sum_ends : nullptr, options, start);
+    report.case_path = case_path.string();
+    report.read_seconds = reading;
+    return report;
+  }
   // Memory first, before anything of the grid's size is read: per sample, every frame's height
   // (8 bytes) and its two complex waves in the dispersion fit (16), the two end frames' six
   // fields (96), the analysis' spectra and expected powers (64), and one frame of float

@@ -375,6 +375,7 @@ Point make_point(const SweepSpec& spec, std::size_t index) {
   toml_text << document;
   try {
     point.case_file = parse_case_toml(toml_text.str(), spec.case_path);
+    require_single_grid(point.case_file, "swell sweep");
   } catch (const InvalidInput& e) {
     throw InvalidInput(fmt::format("--vary at {}: the case rules refuse this point: {}",
                                    point_label(spec, point), e.what()));

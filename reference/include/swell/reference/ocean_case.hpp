@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "swell/reference/cascade.hpp"
 #include "swell/reference/directional.hpp"
 #include "swell/reference/dispersion.hpp"
 #include "swell/reference/grid.hpp"
@@ -44,6 +46,17 @@ struct OceanCase {
   double loop_period = 0;  // s; 0 = none, else ω is quantized down to multiples of 2π/T
   std::uint64_t seed = 0;
 
+  // Cascades (reference/cascade.hpp, DESIGN.md §1): this surface is cascade `cascade` of a set
+  // (its random numbers keyed by it), its amplitudes weighted by `band`; or, when `members` is
+  // not empty, it is the summed surface of an additive set on the fine grid `grid`, where
+  // cascade c's wave vectors carry w_c² Ψ Δk_c² (its own Δk) with its own random numbers.
+  int cascade = 0;
+  BandWeight band;
+  std::vector<CascadeMember> members;
+  bool is_summed_cascades() const { return !members.empty(); }
+  // This case as cascade `member` of the summed set: its grid, band and index, the rest shared.
+  OceanCase member_case(const CascadeMember& member) const;
+
   // Checks it and throws InvalidInput naming the first thing wrong.
   void validate() const;
 
@@ -51,8 +64,12 @@ struct OceanCase {
   // ω(|k|) of the case: its dispersion relation, quantized by the loop period if one is set.
   double omega(double k) const;
   Dispersion dispersion() const;
-  // Ψ(k) of the case (with gravity, depth and wind direction applied).
+  // Ψ(k) of the case (with gravity, depth and wind direction applied), times the band weight
+  // w² of a cascade; for a summed set, Σ_c [k on cascade c's grid] w_c² Ψ Δk_c²/Δk², meaningful
+  // at the fine grid's wave vectors only.
   DirectionalSpectrumPtr directional_spectrum() const;
+  // Ψ(k) of the whole sea, without band weights.
+  DirectionalSpectrumPtr sea_spectrum() const;
   // The spectrum spec with gravity, depth and wind_dir filled in, as model_factory takes it.
   ModelSpec full_spectrum_spec() const;
   std::string describe() const;  // "jonswap hs=3 tp=8 gamma=3.3 + cos2s s=10, 256×256 over 200×200 m"

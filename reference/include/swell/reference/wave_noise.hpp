@@ -6,7 +6,8 @@
 // surface on a coarser grid is exactly the band-limited part of a finer one.
 //
 // Mapping, fixed as part of the contract: key = {seed mod 2³², seed / 2³²}, counter =
-// {n, m, stream, 0} as 32-bit two's complement; the four output words (w0, w1, w2, w3) form two
+// {n, m, stream, cascade} as 32-bit two's complement (cascade 0: the single-grid surface; each
+// cascade of a set draws its own numbers, DESIGN.md §1 "Cascades"); the four output words (w0, w1, w2, w3) form two
 // 64-bit integers (w0 + 2³² w1, w2 + 2³² w3), which r123::boxmuller turns into (ξ1, ξ2).
 #include <cstdint>
 
@@ -18,7 +19,8 @@ struct NormalPair {
 
 // Stream 0 is the amplitude noise of conventions §Amplitudes; other streams are free for
 // independent uses (test fixtures use stream 1).
-NormalPair wave_noise(std::uint64_t seed, int n, int m, std::uint32_t stream = 0);
+NormalPair wave_noise(std::uint64_t seed, int n, int m, std::uint32_t stream = 0,
+                      std::uint32_t cascade = 0);
 
 // Two independent uniforms on (0, 1] from the same counter (for tests of non-Gaussian noise).
 struct UniformPair {

@@ -12,10 +12,16 @@
 //   [synthesis] choppiness = 1.0  loop_period = 0.0  seed = 1
 //   [input]     files = "frame_%04d.exr"  height = "h"  disp_x = "dx" …
 //               value_range = [-4.0, 4.0] (integer images: the values of pixel 0 and the top pixel)
+//   [cascades]  relation = "additive" | "nested"  crossover = 1.0   a cascade set, instead of
+//   [[cascade]] n, length, band = [lo, hi] (rad/m), files, channels  [grid] and [input]
+//   [sum]       files, channels: the summed surface of an additive set (optional)
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <vector>
 #include <string>
 
+#include "swell/reference/cascade.hpp"
 #include "swell/reference/fields.hpp"
 #include "swell/reference/ocean_case.hpp"
 
@@ -47,12 +53,40 @@ enum class SpectrumScale {
   free,      // the engine scales its spectrum by an unknown constant (Phillips' A, a slider)
 };
 
+// One cascade of a set (docs/cascades.md): its grid, its band of |k| and its frames.
+struct CascadeInput {
+  int index = 0;  // its position in the set: cascade 0, 1, …
+  reference::Grid grid;
+  reference::BandWeight band;  // everywhere (w = 1) unless the case gives one
+  InputSpec input;
+};
+
 struct CaseFile {
   reference::OceanCase ocean;
   InputSpec input;
   SpectrumScale scale = SpectrumScale::absolute;
   std::filesystem::path directory;  // the case file's directory: base of relative paths
+
+  // A cascade set ([cascades] and [[cascade]] tables; DESIGN.md §1 "Cascades"): empty for a
+  // single-grid case. `ocean` then holds what the cascades share, with cascade 0's grid, and
+  // `input` is empty; `sum` reads the summed surface ([sum]) of an additive set.
+  std::vector<CascadeInput> cascades;
+  reference::CascadeRelation relation = reference::CascadeRelation::additive;
+  InputSpec sum;
+  bool is_cascade_set() const { return !cascades.empty(); }
+  // Cascade c as a case of its own: its grid and band, the random numbers of cascade c (an
+  // additive set) or of the one sea (nested: cascade key 0 for all).
+  reference::OceanCase cascade_case(std::size_t c) const;
+  // The cascades as a summed surface sees them (grid, band, random-number key).
+  std::vector<reference::CascadeMember> members() const;
+  // The summed surface of an additive set on the finest spacing over the largest patch, when
+  // the patch lengths allow (reference::summed_grid); nullopt otherwise (with the reason in `why`).
+  std::optional<reference::OceanCase> summed_case(std::string* why = nullptr) const;
 };
+
+// A refusal for commands that take one grid: "swell fit takes a single-grid case; FILE is a
+// cascade set (swell synth and swell gate take those)".
+void require_single_grid(const CaseFile& case_file, const std::string& command);
 
 // Reads and validates a case file. Unknown sections or keys, wrong types, missing required keys
 // and non-physical values throw InvalidInput naming the file, the key and the problem.

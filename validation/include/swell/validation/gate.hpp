@@ -51,6 +51,14 @@ struct GateReport {
 // Judges frames already in memory.
 GateReport run_gate(const CaseFile& case_file, const reference::FrameSequence& frames,
                     const GateOptions& options = {});
+// Judges a cascade set (DESIGN.md §1 "Cascades"; docs/gate.md §Cascades) whose frames are in
+// memory: `cascades[c]` holds cascade c's (no frames: not given), `sum` the summed surface's
+// (null: not given). Every cascade passes the ordinary checks against its band of the spectrum
+// (results named "cascade1.energy", …) and its band checks; the set passes cascade_checks.hpp's;
+// the sum the ordinary checks ("sum.…") and its band checks. One family-wise α over all.
+GateReport run_cascade_gate(const CaseFile& case_file,
+                            const std::vector<reference::FrameSequence>& cascades,
+                            const reference::FrameSequence* sum, const GateOptions& options = {});
 // Reads the case file and its frames (frame_io.hpp), then judges them. Bad input throws
 // InvalidInput naming the file and the problem. Every field of every frame is read and checked;
 // only what the checks use is kept: the height of every frame, and the other fields of the

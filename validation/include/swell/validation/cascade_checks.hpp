@@ -1,0 +1,72 @@
+#pragma once
+// The checks of a cascade set as a whole (DESIGN.md §1 "Cascades", docs/gate.md §Cascades),
+// beside the ordinary checks each cascade passes against its band of the spectrum (w_c² Ψ).
+// They consume frames and the case only, and speak the engine's language:
+//
+//   cascadeC.band.outside   exact: no energy where cascade C's band weight is 0 (beyond rounding);
+//                           names the |k| range, the other cascade carrying it ("cascades 0 and 1
+//                           both carry 0.063–0.080 rad/m (energy × 2.0 there)") or a square cut
+//   cascadeC.band.missing   statistical: no run of wave vectors inside the band, in order of |k|,
+//                           all nearly empty (I < 1e-4 μ) beyond chance: "no cascade carries …"
+//   cascades.energy         statistical: the energy of the set against the union's band-limited
+//                           m0 (exact law of Σ I); names a cascade scaled with another's Δk
+//   cascades.independence   statistical: the initial amplitudes recovered from the frames,
+//                           normalized, are uncorrelated between cascades at the same (n, m)
+//   cascades.patch          exact: each cascade's frames move at the ω of its own patch's k, not
+//                           at that of another cascade's patch length
+//   cascades.nested         exact: a nested set's coarse band equals the broad band's part at
+//                           the same wave vectors, frame by frame
+//   sum.band.outside/missing  the same as the band checks, on the summed surface: every wave
+//                           vector of the fine grid carries what the cascades whose grids hold it
+//                           put there, and nothing elsewhere
+#include <complex>
+#include <vector>
+
+#include "swell/reference/cascade.hpp"
+#include "swell/reference/fields.hpp"
+#include "swell/reference/ocean_case.hpp"
+#include "swell/validation/check_result.hpp"
+
+namespace swell::validation {
+
+// One cascade's frames and case (its grid, band and random-number key).
+struct CascadeView {
+  int index = 0;
+  const reference::OceanCase* ocean = nullptr;
+  const reference::FrameSequence* frames = nullptr;
+};
+
+// The initial amplitudes h̃0(k) of a surface recovered from its frames' heights (grid order):
+// with frames at two or more times, the least-squares a of ĥ(k, t) = a e^(−iωt) + b e^(iωt) at
+// the case's ω(k) (a = h̃0(k), b = conj h̃0(−k)); with one frame at t = 0, ĥ(k, 0) itself
+// (h̃0(k) + conj h̃0(−k): `mixed`). `valid` is false where the fit is degenerate
+// (2ω dt ≡ 0 mod 2π) or k carries no energy on the grid; `usable` false when neither applies
+// (one frame at t ≠ 0), with the reason.
+struct RecoveredAmplitudes {
+  std::vector<std::complex<double>> a;
+  std::vector<char> valid;
+  bool mixed = false;
+  bool usable = true;
+  std::string reason;
+};
+RecoveredAmplitudes recover_initial_amplitudes(const reference::OceanCase& ocean,
+                                               const reference::FrameSequence& frames);
+
+// Band checks of one cascade: `others` are the whole set's members (for naming who else carries
+// a range). `alpha` is the missing check's false-alarm rate.
+std::vector<CheckResult> check_cascade_band(const CascadeView& cascade,
+                                            const std::vector<reference::CascadeMember>& members,
+                                            double alpha);
+// The set's energy against the union's band-limited m0; `alpha` its false-alarm rate.
+CheckResult check_cascades_energy(const std::vector<CascadeView>& cascades, double alpha);
+// Pairwise independence of the cascades' random numbers; `alpha` shared by the pairs.
+CheckResult check_cascades_independence(const std::vector<CascadeView>& cascades, double alpha);
+// Each cascade moves at its own patch's ω(k); nothing to judge (passes) with one frame.
+CheckResult check_cascades_patch(const std::vector<CascadeView>& cascades);
+// Nested: the band of every coarser cascade equals the finest one's part.
+CheckResult check_cascades_nested(const std::vector<CascadeView>& cascades);
+// The band checks on a summed surface (`summed` has members).
+std::vector<CheckResult> check_summed_bands(const reference::OceanCase& summed,
+                                            const reference::FrameSequence& frames, double alpha);
+
+}  // namespace swell::validation
