@@ -115,6 +115,22 @@ std::complex<double> initial_amplitude(const OceanCase& ocean_case, int n, int m
   return amplitude(*ocean_case.sea_spectrum(), ocean_case, n, m);
 }
 
+std::vector<std::complex<double>> initial_amplitudes(const OceanCase& ocean_case) {
+  if (ocean_case.is_lattice()) {
+    throw InvalidInput("initial_amplitudes: a grid case (a lattice's amplitudes are per class)");
+  }
+  const auto sea = ocean_case.sea_spectrum();
+  const auto& g = ocean_case.grid;
+  std::vector<std::complex<double>> out(std::size_t(g.nx) * g.ny);
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      out[std::size_t(j) * g.nx + i] = amplitude(*sea, ocean_case, reference::Grid::signed_index(i, g.nx),
+                                                 reference::Grid::signed_index(j, g.ny));
+    }
+  }
+  return out;
+}
+
 namespace {
 
 // sin x and cos x to about 1 ulp for the reduced phases |x| ≤ π + 2⁻² of

@@ -128,12 +128,15 @@ std::string BandCoverageProblem::describe() const {
 
 std::vector<BandCoverageProblem> band_coverage(const OceanCase& sea,
                                                const std::vector<CascadeMember>& members) {
-  // The range to examine: from the lowest support to the highest; an unbounded top ends where
-  // the last finite edge's transition ends (beyond it nothing changes).
-  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  // The range to examine: between the set's outer edges — the lowest band's lower edge and the
+  // highest band's upper edge, past their own transitions (a crossover there tapers the set's
+  // band as a grid's limits do; it neither overlaps nor leaves a gap). An unbounded top ends
+  // where the last finite edge's transition ends (beyond it nothing changes).
+  double lo = std::numeric_limits<double>::infinity(), hi = 0, top = 0;
   std::vector<double> edges;
   for (const auto& m : members) {
-    lo = std::min(lo, m.band.support_lo());
+    lo = std::min(lo, m.band.lo * m.band.crossover);
+    top = std::max(top, m.band.hi / m.band.crossover);
     for (double e : {m.band.lo, m.band.hi}) {
       if (e > 0 && std::isfinite(e)) {
         edges.push_back(e / m.band.crossover);
@@ -141,11 +144,14 @@ std::vector<BandCoverageProblem> band_coverage(const OceanCase& sea,
         edges.push_back(e * m.band.crossover);
       }
     }
-    hi = std::max(hi, m.band.support_hi());
   }
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  if (std::isinf(hi)) hi = edges.empty() ? lo : edges.back();
+  hi = std::isinf(top) ? (edges.empty() ? lo : edges.back()) : top;
+  if (!(hi > lo)) return {};  // one band over everything (or no inner range): nothing to share
+  edges.erase(std::remove_if(edges.begin(), edges.end(),
+                             [&](double e) { return e < lo || e > hi; }),
+              edges.end());
   // Sample Σ w² on a fine logarithmic grid between consecutive edges (and just beside each edge,
   // where hard cuts jump), and group consecutive samples whose sum is not 1 into ranges.
   std::vector<double> ks;

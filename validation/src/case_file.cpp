@@ -357,7 +357,8 @@ void write_parameters(std::string& out, const ModelSpec& spec) {
 // The keys of an input section (`valid`: files, raw_type, value_range, the field names, and
 // whatever else the section's reader takes itself).
 void read_input_keys(const Reporter& report, const Section& input,
-                     const std::vector<std::string>& valid, InputSpec& out) {
+                     const std::vector<std::string>& valid, InputSpec& out,
+                     bool frames_optional = false) {
   {
     input.allow_only(valid);
     if (auto files = input.string("files")) {
@@ -395,7 +396,7 @@ void read_input_keys(const Reporter& report, const Section& input,
       }
       out.raw_type = *raw_type;
     }
-    if (input.present() && out.channels.empty()) {
+    if (input.present() && out.channels.empty() && !(frames_optional && out.files.empty())) {
       std::vector<std::string> fields;
       for (Field field : reference::kAllFields) fields.push_back(reference::field_name(field));
       report.fail(fmt::format("[{}] names no field; give at least one of {} with its channel "
@@ -464,7 +465,8 @@ void read_cascades(const Reporter& report, const toml::table& document, CaseFile
     const Section table(report, fmt::format("cascade {}", c), list->get(c)->as_table());
     CascadeInput cascade;
     cascade.index = int(c);
-    read_input_keys(report, table, keys, cascade.input);
+    // A cascade's frames are optional: the gate may judge the summed surface alone.
+    read_input_keys(report, table, keys, cascade.input, true);
     const auto n = table.integer_pair("n");
     if (!n) table.missing("n", "samples [nx, ny]");
     const auto length = table.number_pair("length");

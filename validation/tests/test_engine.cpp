@@ -202,7 +202,7 @@ class Engine {
       const double r3 = std::sqrt(3.0);
       return {r3 * (2.0 * u1 - 1.0), r3 * (2.0 * u2 - 1.0)};
     }
-    return reference::wave_noise(c_.seed, n, m, stream);
+    return reference::wave_noise(c_.seed, n, m, stream, static_cast<std::uint32_t>(c_.cascade));
   }
 
   double omega(double k) const {

@@ -35,6 +35,9 @@ Packing packing_from_string(const std::string& name);
 // The initial amplitude h̃0 at signed wave-number indices (n, m) of a case — the definition,
 // in double precision; 0 where the grid carries no energy.
 std::complex<double> initial_amplitude(const reference::OceanCase& ocean_case, int n, int m);
+// The same over the case's grid, in FFT order (entry j·nx + i at (n, m) of (i, j)), building the
+// spectrum once (initial_amplitude builds it per call).
+std::vector<std::complex<double>> initial_amplitudes(const reference::OceanCase& ocean_case);
 
 // Where one frame's time went, by the device's own clock: the evolution and the transforms
 // together (device_seconds, before the fields reach the host), the evolution kernel alone
