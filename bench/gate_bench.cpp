@@ -3,6 +3,12 @@
 //
 //   gate/<N>/<F>/real_time    F frames of N², fp32 EXR with all six fields (as `swell synth`
 //                             writes them), timed by the wall clock
+//   gate_cascades/<N>/<F>/real_time
+//                             a set of three additive cascades of N² each, patches 1600, 400
+//                             and 100 m, bands [0, 0.2), [0.2, 0.8), [0.8, 6.4) rad/m
+//                             (data/cases/three_cascades.toml), F frames each, judged per
+//                             cascade and as a set (issue 15: gate_cascades/256/16 under 1 s
+//                             with 2 threads)
 //
 // Setup, not timed: the frames of a JONSWAP case (Hs 3 m, Tp 8 s, γ 3.3, cos2s s = 10, 1000 m
 // patch, dt 0.1 s) are synthesized once in fp32 through FFTW and written as EXR with their
@@ -92,15 +98,64 @@ class FrameDirectories {
   std::map<std::string, fs::path> made_;
 };
 
+// The three-cascade set of data/cases/three_cascades.toml at N² per cascade, F frames, its
+// frames written as `swell synth` writes a set (cascade0/, cascade1/, cascade2/).
+fs::path cascade_case_file(int n, int frames) {
+  static std::map<std::string, fs::path> made;
+  static struct Cleanup {
+    ~Cleanup() {
+      std::error_code error;
+      for (const auto& [key, directory] : made) fs::remove_all(directory, error);
+    }
+  } cleanup;
+  const std::string key = std::to_string(n) + "/" + std::to_string(frames);
+  if (auto it = made.find(key); it != made.end()) return it->second / "case.toml";
+  const fs::path directory = fs::temp_directory_path() /
+                             ("swell_gate_cascades_bench_" + std::to_string(getpid()) + "_" + std::to_string(n) +
+                              "_" + std::to_string(frames));
+  made[key] = directory;
+  std::string text =
+      "[time]\ndt = 0.25\nframes = " + std::to_string(frames) +
+      "\n[spectrum]\nmodel = \"jonswap\"\nhs = 3.0\ntp = 8.0\ngamma = 3.3\n"
+      "[spreading]\nmodel = \"cos2s\"\ns = 10.0\nwind_dir_deg = 30.0\n"
+      "[synthesis]\nchoppiness = 0.8\nseed = 3\n[cascades]\nrelation = \"additive\"\n";
+  const double lengths[3] = {1600, 400, 100}, edges[4] = {0, 0.2, 0.8, 6.4};
+  for (int c = 0; c < 3; ++c) {
+    text += "[[cascade]]\nn = " + std::to_string(n) + "\nlength = " + std::to_string(lengths[c]) +
+            "\nband = [" + std::to_string(edges[c]) + ", " + std::to_string(edges[c + 1]) + "]\n";
+  }
+  auto case_file = swell::validation::parse_case_toml(text, directory / "case.toml");
+  swell::impls::SynthesizerOptions options;
+  options.precision = swell::impls::Precision::f32;
+  swell::validation::FrameWriteOptions write;
+  write.format = swell::validation::FrameFormat::exr;
+  std::vector<swell::reference::Field> fields(swell::reference::kAllFields.begin(),
+                                              swell::reference::kAllFields.end());
+  for (std::size_t c = 0; c < case_file.cascades.size(); ++c) {
+    const auto ocean = case_file.cascade_case(c);
+    const swell::impls::Synthesizer synthesizer(ocean, options);
+    const fs::path folder = directory / ("cascade" + std::to_string(c));
+    fs::create_directories(folder);
+    for (int f = 0; f < frames; ++f) {
+      swell::validation::write_frame(folder, ocean.grid, synthesizer.frame(ocean.time(f)), f, write);
+    }
+    auto input = swell::validation::frame_input_spec(fields, write);
+    input.files = "cascade" + std::to_string(c) + "/" + input.files;
+    case_file.cascades[c].input = input;
+  }
+  swell::validation::write_case_file(directory / "case.toml", case_file);
+  return directory / "case.toml";
+}
+
 FrameDirectories& directories() {
   static FrameDirectories instance;
   return instance;
 }
 
-void run_gate_bench(benchmark::State& state, int n, int frames) {
+void run_gate_bench(benchmark::State& state, int n, int frames, bool cascades) {
   fs::path case_path;
   try {
-    case_path = directories().case_file(n, frames);
+    case_path = cascades ? cascade_case_file(n, frames) : directories().case_file(n, frames);
   } catch (const std::exception& e) {
     any_failed = true;
     state.SkipWithError(e.what());
@@ -144,7 +199,14 @@ int main(int argc, char** argv) {
   for (const auto& [n, frames] : {std::pair{128, 8}, std::pair{256, 16}, std::pair{512, 64}}) {
     benchmark::RegisterBenchmark(
         ("gate/" + std::to_string(n) + "/" + std::to_string(frames)).c_str(), run_gate_bench, n,
-        frames)
+        frames, false)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  }
+  for (const auto& [n, frames] : {std::pair{64, 8}, std::pair{256, 16}}) {
+    benchmark::RegisterBenchmark(
+        ("gate_cascades/" + std::to_string(n) + "/" + std::to_string(frames)).c_str(),
+        run_gate_bench, n, frames, true)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
   }

@@ -96,6 +96,7 @@ struct SynthOptions {
   std::vector<double> value_range;  // png: the metres pixel 0 and pixel 65535 stand for
   std::string out;
   std::string json;
+  std::string sum = "auto";  // cascade sets: write the summed surface (yes | no | auto)
 
   bool has(const std::string& flag) const { return given.at(flag)->count() > 0; }
 };
@@ -433,7 +434,22 @@ int run_synth(const SynthOptions& o) {
       c.cascades[k].input = input_in(folder, w);
     }
     std::string why;
-    if (const auto summed = c.summed_case(&why)) {
+    auto summed = c.summed_case(&why);
+    // auto: the sum when its grid is at most 2048² (16 frames of six fp32 fields of 2048² are
+    // 1.6 GB already).
+    constexpr double kLargestAutomaticSum = 2048.0 * 2048.0;
+    if (summed && o.sum == "no") {
+      summed.reset();
+      why = "--sum no";
+    } else if (summed && o.sum == "auto" &&
+               double(summed->grid.nx) * summed->grid.ny > kLargestAutomaticSum) {
+      why = fmt::format("it would be {}×{} (more than 2048²); --sum yes writes it",
+                        summed->grid.nx, summed->grid.ny);
+      summed.reset();
+    } else if (!summed && o.sum == "yes") {
+      throw InvalidInput("--sum yes: the cascades cannot be summed on one grid: " + why);
+    }
+    if (summed) {
       w.label = "sum: ";
       write_surface(*summed, out / "sum", w, files);
       c.sum = input_in("sum", w);
@@ -587,6 +603,10 @@ Action add_synth_command(CLI::App& app) {
                  "png: the values pixel 0 and pixel 65535 stand for, LO,HI [m]; a value outside "
                  "is an error, never clipped")
       ->delimiter(',');
+  app.add_option("--sum", o->sum,
+                 "cascade sets: write the summed surface under DIR/sum (auto: when the patch "
+                 "lengths allow and its grid is at most 2048²; yes; no)")
+      ->check(CLI::IsMember({"auto", "yes", "no"}));
   app.add_option("--out", o->out, "output directory (created if missing)")->required();
   app.add_option("--json", o->json, "write JSON to FILE, or - for standard output");
   app.footer(
@@ -598,8 +618,11 @@ Action add_synth_command(CLI::App& app) {
       ".tif, or 16-bit .png with height, disp_x, disp_y as R, G, B (--value-range), and DIR/case.toml, whose [input] reads them back. "
       "With --impl lattice[:fft=NAME] --points N [--kind korobov|fibonacci]: N-vectors "
       "frame_0000_h.npy …, points.npy (N × 2, m), mesh.ply (frame 0, tileable) and a case.toml "
-      "with [sampling] kind = \"lattice\". JSON: {case, description, impl, "
-      "precision, format, n, sampling, frames, files, seconds}.");
+      "with [sampling] kind = \"lattice\". A cascade set ([cascades], docs/case_files.md) writes each "
+      "cascade's frames under DIR/cascade0, DIR/cascade1, … and, where the patch lengths are integer "
+      "ratios (--sum), the summed surface on the finest spacing over the largest patch under DIR/sum. "
+      "JSON: {case, description, impl, precision, format, n, sampling, frames, files, seconds} "
+      "(+ relation, cascades, sum for a set).");
   return [o] { return run_synth(*o); };
 }
 

@@ -49,7 +49,7 @@ double seconds_per_unit(const std::string& unit) {
 double BenchmarkName::points() const {
   if (family.rfind("lattice", 0) == 0) return double(size);
   const double square = double(size) * double(size);
-  return family == "gate" ? square * double(frames) : square;
+  return family.rfind("gate", 0) == 0 ? square * double(frames) : square;
 }
 
 // The parts Google Benchmark appends to a name for its own settings ("min_warmup_time:0.050",
@@ -77,10 +77,11 @@ BenchmarkName parse_benchmark_name(const std::string& run_name) {
   };
   if (parts.size() < 3) throw refuse("too few parts for any of swell's naming schemes");
   name.family = parts[0];
-  if (name.family == "gate") {
+  // gate/<N>/<frames>: one surface; gate_cascades/<N>/<frames>: a set of three cascades of N².
+  if (name.family == "gate" || name.family == "gate_cascades") {
     name.suite = "gate";
     if (parts.size() != 3 || !parse_long(parts[1], name.size) || !parse_long(parts[2], name.frames)) {
-      throw refuse("expected gate/<N>/<frames>");
+      throw refuse("expected " + name.family + "/<N>/<frames>");
     }
     return name;
   }

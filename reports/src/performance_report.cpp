@@ -392,14 +392,17 @@ json write_performance_report(const ReportOptions& options) {
   if (rows.count("gate")) {
     json table = json::array();
     md << "## The gate (swell_gate_bench)\n\n"
-       << "| N | frames | median s | IQR s | reading s | judging s | reps |\n|---|---|---|---|---|---|---|\n";
+       << "| benchmark | N | frames | median s | IQR s | reading s | judging s | reps |\n"
+          "|---|---|---|---|---|---|---|---|\n";
     for (auto& r : rows["gate"]) {
       const auto& n = r.run->name;
       const double read = counter_median(*r.run, "read_s"), judge = counter_median(*r.run, "judge_s");
-      md << fmt::format("| {}² | {} | {:.3f} | {:.3f} | {} | {} | {} |\n", n.size, n.frames, r.q.median,
+      md << fmt::format("| {} | {}² | {} | {:.3f} | {:.3f} | {} | {} | {} |\n",
+                        n.family == "gate" ? "one surface" : "three cascades", n.size, n.frames,
+                        r.q.median,
                         r.q.q3 - r.q.q1, fixed(read, 3), fixed(judge, 3), r.run->seconds.size());
       json row = row_json(r);
-      row.update({{"n", n.size}, {"frames", n.frames}, {"read_s", number(read)},
+      row.update({{"benchmark", n.family}, {"n", n.size}, {"frames", n.frames}, {"read_s", number(read)},
                   {"judge_s", number(judge)}});
       table.push_back(row);
     }

@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <atomic>
+#include <exception>
 #include <functional>
+#include <thread>
 #include <map>
 #include <numeric>
 
@@ -38,10 +41,10 @@ struct SurfaceSpectrum {
   double floor = 0;               // rounding: the stray energy a right surface may show
 };
 
-SurfaceSpectrum surface_spectrum(const OceanCase& ocean, const reference::FrameSequence& frames) {
+SurfaceSpectrum surface_spectrum(const OceanCase& ocean, const reference::FrameSequence& frames,
+                                 const std::vector<Complex>& spectrum) {
   SurfaceSpectrum s;
   s.grid = ocean.grid;
-  const auto spectrum = field_spectrum(frames.field(0, Field::height), ocean.grid);
   s.power.resize(spectrum.size());
   for (std::size_t e = 0; e < spectrum.size(); ++e) s.power[e] = std::norm(spectrum[e]);
   s.mu = expected_periodogram(*ocean.directional_spectrum(), ocean.grid);
@@ -118,16 +121,6 @@ std::vector<int> covering(const std::vector<reference::CascadeMember>& members, 
     if (m.band.support_lo() <= b && m.band.support_hi() > a) out.push_back(m.cascade);
   }
   return out;
-}
-
-// The share of the sea's m0 between |k| = a and b (the omnidirectional spectrum's integral).
-double m0_share(const OceanCase& ocean, double a, double b) {
-  const auto sea = ocean.sea_spectrum();
-  const auto& omni = sea->omnidirectional();
-  const double m0 = reference::spectral_moment(omni, 0);
-  const auto dispersion = ocean.dispersion();
-  if (!(m0 > 0) || !(b > a)) return 0;
-  return reference::spectral_moment(omni, 0, {dispersion.omega(a), dispersion.omega(b)}) / m0;
 }
 
 // Runs of nearly empty ordinates among the entries where the case puts energy, in order of |k|
@@ -273,17 +266,35 @@ bool fit_two_waves(const std::vector<std::vector<Complex>>& spectra, const std::
   return true;
 }
 
-}  // namespace
+// What the set checks need of one cascade, computed once: ĥ of every frame, the frame times,
+// and frame 0's spectral view.
+struct Analysis {
+  int index = 0;
+  const OceanCase* ocean = nullptr;
+  const reference::FrameSequence* frames = nullptr;
+  std::vector<std::vector<Complex>> spectra;
+  std::vector<double> t;
+  SurfaceSpectrum s;
+};
 
-RecoveredAmplitudes recover_initial_amplitudes(const OceanCase& ocean,
-                                               const reference::FrameSequence& frames) {
+Analysis analyse(const CascadeView& view) {
+  Analysis a;
+  a.index = view.index;
+  a.ocean = view.ocean;
+  a.frames = view.frames;
+  a.spectra = frame_spectra(*view.frames, view.ocean->grid);
+  for (const auto& frame : view.frames->frames) a.t.push_back(frame.time);
+  a.s = surface_spectrum(*view.ocean, *view.frames, a.spectra.front());
+  return a;
+}
+
+RecoveredAmplitudes recover(const OceanCase& ocean, const std::vector<std::vector<Complex>>& spectra,
+                            const std::vector<double>& t) {
   RecoveredAmplitudes out;
   const auto& g = ocean.grid;
   const std::size_t count = std::size_t(g.nx) * g.ny;
   out.a.assign(count, 0.0);
   out.valid.assign(count, 0);
-  std::vector<double> t;
-  for (const auto& frame : frames.frames) t.push_back(frame.time);
   if (t.size() == 1) {
     if (t[0] != 0) {
       out.usable = false;
@@ -291,11 +302,10 @@ RecoveredAmplitudes recover_initial_amplitudes(const OceanCase& ocean,
       return out;
     }
     out.mixed = true;
-    out.a = field_spectrum(frames.field(0, Field::height), g);
+    out.a = spectra.front();
     for (std::size_t e = 0; e < count; ++e) out.valid[e] = carries(g, e);
     return out;
   }
-  const auto spectra = frame_spectra(frames, g);
   for (std::size_t e = 0; e < count; ++e) {
     if (!carries(g, e)) continue;
     const int n = Grid::signed_index(int(e % g.nx), g.nx), m = Grid::signed_index(int(e / g.nx), g.ny);
@@ -309,11 +319,74 @@ RecoveredAmplitudes recover_initial_amplitudes(const OceanCase& ocean,
   return out;
 }
 
-std::vector<CheckResult> check_cascade_band(const CascadeView& cascade,
-                                            const std::vector<reference::CascadeMember>& members,
-                                            double alpha) {
+std::vector<CheckResult> band_checks(const Analysis& analysis,
+                                     const std::vector<reference::CascadeMember>& members,
+                                     double alpha);
+CheckResult energy_check(const std::vector<Analysis>& cascades, double alpha);
+CheckResult independence_check(const std::vector<Analysis>& cascades, double alpha);
+CheckResult patch_check(const std::vector<Analysis>& cascades);
+CheckResult nested_check(const std::vector<Analysis>& cascades);
+
+}  // namespace
+
+RecoveredAmplitudes recover_initial_amplitudes(const OceanCase& ocean,
+                                               const reference::FrameSequence& frames) {
+  std::vector<double> t;
+  for (const auto& frame : frames.frames) t.push_back(frame.time);
+  if (t.size() == 1 && t[0] != 0) return recover(ocean, {}, t);
+  return recover(ocean, frame_spectra(frames, ocean.grid), t);
+}
+
+std::vector<CheckResult> run_cascade_set_checks(const std::vector<CascadeView>& cascades,
+                                                const std::vector<reference::CascadeMember>& members,
+                                                const CascadeSetOptions& options) {
+  // One analysis per cascade, on the gate's threads.
+  std::vector<Analysis> analyses(cascades.size());
+  std::vector<std::exception_ptr> errors(cascades.size());
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t c; (c = next++) < cascades.size();) {
+      try {
+        analyses[c] = analyse(cascades[c]);
+      } catch (...) {
+        errors[c] = std::current_exception();
+      }
+    }
+  };
+  {
+    std::vector<std::thread> pool;
+    for (int t = 1; t < std::min<int>(std::max(1, options.threads), int(cascades.size())); ++t) {
+      pool.emplace_back(work);
+    }
+    work();
+    for (auto& thread : pool) thread.join();
+  }
+  for (const auto& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+  std::vector<CheckResult> out;
+  if (options.relation == reference::CascadeRelation::additive) {
+    for (const auto& a : analyses) {
+      for (auto& r : band_checks(a, members, options.alpha_per_check)) out.push_back(std::move(r));
+    }
+    if (analyses.size() >= 2) {
+      if (!options.free_scale) out.push_back(energy_check(analyses, options.alpha_per_check));
+      out.push_back(independence_check(analyses, options.alpha_per_check));
+      out.push_back(patch_check(analyses));
+    }
+  } else if (analyses.size() >= 2) {
+    out.push_back(nested_check(analyses));
+  }
+  return out;
+}
+
+namespace {
+
+std::vector<CheckResult> band_checks(const Analysis& cascade,
+                                     const std::vector<reference::CascadeMember>& members,
+                                     double alpha) {
   const OceanCase& ocean = *cascade.ocean;
-  const SurfaceSpectrum s = surface_spectrum(ocean, *cascade.frames);
+  const SurfaceSpectrum& s = cascade.s;
   const auto& band = ocean.band;
   const std::string prefix = fmt::format("cascade{}.band", cascade.index);
   const std::string subject = fmt::format("cascade {}: {}×{} over {:g}×{:g} m, band {}",
@@ -415,7 +488,7 @@ std::vector<CheckResult> check_cascade_band(const CascadeView& cascade,
   return out;
 }
 
-CheckResult check_cascades_energy(const std::vector<CascadeView>& cascades, double alpha) {
+CheckResult energy_check(const std::vector<Analysis>& cascades, double alpha) {
   std::vector<double> all_weights;
   double measured = 0, expected = 0;
   struct Part {
@@ -424,7 +497,7 @@ CheckResult check_cascades_energy(const std::vector<CascadeView>& cascades, doub
   };
   std::vector<Part> parts;
   for (const auto& c : cascades) {
-    const SurfaceSpectrum s = surface_spectrum(*c.ocean, *c.frames);
+    const SurfaceSpectrum& s = c.s;
     Part part;
     for (std::size_t e = 0; e < s.power.size(); ++e) {
       if (!carries(s.grid, e)) continue;
@@ -482,7 +555,7 @@ CheckResult check_cascades_energy(const std::vector<CascadeView>& cascades, doub
       fmt::format("p ≥ α = {:.0e} (two-sided, exact law of Σ I over the cascades)", alpha), reason);
 }
 
-CheckResult check_cascades_independence(const std::vector<CascadeView>& cascades, double alpha) {
+CheckResult independence_check(const std::vector<Analysis>& cascades, double alpha) {
   // Per cascade: z(n, m) = h̃0 / √E|h̃0|², unit-variance complex normal on a right surface.
   struct Normalized {
     std::map<std::pair<int, int>, Complex> z;
@@ -491,7 +564,7 @@ CheckResult check_cascades_independence(const std::vector<CascadeView>& cascades
   std::vector<Normalized> normalized;
   std::string unusable;
   for (const auto& c : cascades) {
-    const auto recovered = recover_initial_amplitudes(*c.ocean, *c.frames);
+    const auto recovered = recover(*c.ocean, c.spectra, c.t);
     Normalized out;
     out.mixed = recovered.mixed;
     if (!recovered.usable) {
@@ -499,7 +572,7 @@ CheckResult check_cascades_independence(const std::vector<CascadeView>& cascades
       normalized.push_back(out);
       continue;
     }
-    const SurfaceSpectrum s = surface_spectrum(*c.ocean, *c.frames);
+    const SurfaceSpectrum& s = c.s;
     const auto travelling = expected_travelling_power(*c.ocean->directional_spectrum(), s.grid);
     const double per_entry_floor = s.floor / double(s.power.size());
     for (std::size_t e = 0; e < s.power.size(); ++e) {
@@ -572,17 +645,16 @@ CheckResult check_cascades_independence(const std::vector<CascadeView>& cascades
       reason);
 }
 
-CheckResult check_cascades_patch(const std::vector<CascadeView>& cascades) {
+CheckResult patch_check(const std::vector<Analysis>& cascades) {
   double worst_ratio = 1;
   std::string reason;
   for (const auto& c : cascades) {
     const auto& frames = *c.frames;
     if (frames.frames.size() < 3) continue;
     const auto& g = c.ocean->grid;
-    const auto spectra = frame_spectra(frames, g);
-    std::vector<double> t;
-    for (const auto& frame : frames.frames) t.push_back(frame.time);
-    const SurfaceSpectrum s = surface_spectrum(*c.ocean, frames);
+    const auto& spectra = c.spectra;
+    const auto& t = c.t;
+    const SurfaceSpectrum& s = c.s;
     const double per_entry_floor = s.floor / double(s.power.size());
     // The fit residual with ω from a patch length L: k = 2π (n, m)/L.
     auto residual = [&](double lx, double ly) {
@@ -630,7 +702,7 @@ CheckResult check_cascades_patch(const std::vector<CascadeView>& cascades) {
                       reason);
 }
 
-CheckResult check_cascades_nested(const std::vector<CascadeView>& cascades) {
+CheckResult nested_check(const std::vector<Analysis>& cascades) {
   // The broad band: the grid with the most wave vectors; every other is its coarse part.
   std::size_t broad = 0;
   for (std::size_t c = 1; c < cascades.size(); ++c) {
@@ -658,8 +730,8 @@ CheckResult check_cascades_nested(const std::vector<CascadeView>& cascades) {
     Complex cross = 0;
     double low_power = 0, broad_power = 0, difference = 0, floor = 0;
     for (std::size_t f = 0; f < lframes.frames.size(); ++f) {
-      const auto low = field_spectrum(lframes.field(int(f), Field::height), lg);
-      const auto wide = field_spectrum(bframes.field(int(f), Field::height), bg);
+      const auto& low = cascades[c].spectra[f];
+      const auto& wide = cascades[broad].spectra[f];
       double low_mean_square = 0, wide_mean_square = 0;
       for (const auto& x : low) low_mean_square += std::norm(x);
       for (const auto& x : wide) wide_mean_square += std::norm(x);
@@ -717,9 +789,12 @@ CheckResult check_cascades_nested(const std::vector<CascadeView>& cascades) {
                       "|ĥ_low − ĥ_broad| over the low band ≤ rounding, every frame", reason);
 }
 
+}  // namespace
+
 std::vector<CheckResult> check_summed_bands(const OceanCase& summed,
                                             const reference::FrameSequence& frames, double alpha) {
-  const SurfaceSpectrum s = surface_spectrum(summed, frames);
+  const SurfaceSpectrum s =
+      surface_spectrum(summed, frames, field_spectrum(frames.field(0, Field::height), summed.grid));
   const auto& g = s.grid;
   const std::string subject = fmt::format("sum of {} cascades: {}×{} over {:g}×{:g} m",
                                           summed.members.size(), g.nx, g.ny, g.lx, g.ly);

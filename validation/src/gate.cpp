@@ -449,21 +449,19 @@ GateReport judge_cascades(const CaseFile& case_file,
     add_surface(name, surface_case_file(case_file, oceans[c], case_file.cascades[c].input),
                 cascades[c], cascade_ends[c]);
     views.push_back({int(c), &oceans[c], &cascades[c]});
-    if (additive) {
-      for (auto& result : check_cascade_band(views.back(), case_file.members(), alpha_per_check)) {
-        report.results.push_back(std::move(result));
-      }
+  }
+  if (!views.empty()) {
+    report_progress(options, "judging the set…");
+    CascadeSetOptions set_options;
+    set_options.relation = case_file.relation;
+    set_options.alpha_per_check = alpha_per_check;
+    set_options.free_scale = free;
+    set_options.threads = resolved_threads(options.threads);
+    for (auto& result : run_cascade_set_checks(views, case_file.members(), set_options)) {
+      report.results.push_back(std::move(result));
     }
   }
-  if (set_checks) {
-    if (additive) {
-      if (!free) report.results.push_back(check_cascades_energy(views, alpha_per_check));
-      report.results.push_back(check_cascades_independence(views, alpha_per_check));
-      report.results.push_back(check_cascades_patch(views));
-    } else {
-      report.results.push_back(check_cascades_nested(views));
-    }
-  } else if (!given.empty() && case_file.cascades.size() >= 2) {
+  if (!set_checks && !given.empty() && case_file.cascades.size() >= 2) {
     report.skipped.push_back("cascades: needs the frames of two or more cascades");
   }
   if (sum) {
@@ -472,6 +470,16 @@ GateReport judge_cascades(const CaseFile& case_file,
       report.results.push_back(std::move(result));
     }
   }
+  // Each surface's results together: cascade 0's (its band checks included), cascade 1's, …,
+  // the set's, the sum's.
+  auto group = [&](const CheckResult& r) -> std::size_t {
+    const std::string head = r.check.substr(0, r.check.find('.'));
+    if (head == "cascades") return case_file.cascades.size();
+    if (head == "sum") return case_file.cascades.size() + 1;
+    return std::size_t(std::stoul(head.substr(std::string("cascade").size())));
+  };
+  std::stable_sort(report.results.begin(), report.results.end(),
+                   [&](const CheckResult& x, const CheckResult& y) { return group(x) < group(y); });
   report.samples = fmt::format("{}", fmt::join(samples, ", "));
   report.seconds = seconds_since(start);
   return report;

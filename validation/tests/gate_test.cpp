@@ -689,6 +689,20 @@ TEST(DataCases, EveryExampleReadsAndARightEnginePassesIt) {
     ++count;
     CaseFile case_file;
     ASSERT_NO_THROW(case_file = swell::validation::read_case_file(entry.path()));
+    if (case_file.is_cascade_set()) {
+      // A set: every cascade names its frames; the test engine renders each (its band, its
+      // random numbers) and the gate judges the set.
+      case_file.ocean.frames = std::min(case_file.ocean.frames, 8);
+      std::vector<swell::reference::FrameSequence> cascades;
+      for (std::size_t c = 0; c < case_file.cascades.size(); ++c) {
+        EXPECT_FALSE(case_file.cascades[c].input.files.empty()) << "cascade " << c;
+        EXPECT_TRUE(case_file.cascades[c].input.channels.count(Field::height)) << "cascade " << c;
+        cascades.push_back(swell::test::render_surface(case_file.cascade_case(c)));
+      }
+      const auto report = swell::validation::run_cascade_gate(case_file, cascades, nullptr);
+      EXPECT_TRUE(report.passed()) << failures(report);
+      continue;
+    }
     EXPECT_FALSE(case_file.input.files.empty()) << "an example for the gate names its frames";
     EXPECT_TRUE(case_file.input.channels.count(Field::height));
     case_file.ocean.frames = std::min(case_file.ocean.frames, 8);

@@ -52,19 +52,18 @@ struct RecoveredAmplitudes {
 RecoveredAmplitudes recover_initial_amplitudes(const reference::OceanCase& ocean,
                                                const reference::FrameSequence& frames);
 
-// Band checks of one cascade: `others` are the whole set's members (for naming who else carries
-// a range). `alpha` is the missing check's false-alarm rate.
-std::vector<CheckResult> check_cascade_band(const CascadeView& cascade,
-                                            const std::vector<reference::CascadeMember>& members,
-                                            double alpha);
-// The set's energy against the union's band-limited m0; `alpha` its false-alarm rate.
-CheckResult check_cascades_energy(const std::vector<CascadeView>& cascades, double alpha);
-// Pairwise independence of the cascades' random numbers; `alpha` shared by the pairs.
-CheckResult check_cascades_independence(const std::vector<CascadeView>& cascades, double alpha);
-// Each cascade moves at its own patch's ω(k); nothing to judge (passes) with one frame.
-CheckResult check_cascades_patch(const std::vector<CascadeView>& cascades);
-// Nested: the band of every coarser cascade equals the finest one's part.
-CheckResult check_cascades_nested(const std::vector<CascadeView>& cascades);
+struct CascadeSetOptions {
+  reference::CascadeRelation relation = reference::CascadeRelation::additive;
+  double alpha_per_check = 1e-3;  // each statistical check's false-alarm rate
+  bool free_scale = false;        // the engine's scale is free: no energy check
+  int threads = 1;                // the cascades are analysed concurrently
+};
+// The band checks of every cascade (additive) and the set's checks, in that order: an additive
+// set's energy (unless free_scale), independence and patch; a nested set's nested check. The set
+// checks need two cascades; `members` are the whole set's (naming who else carries a range).
+std::vector<CheckResult> run_cascade_set_checks(const std::vector<CascadeView>& cascades,
+                                                const std::vector<reference::CascadeMember>& members,
+                                                const CascadeSetOptions& options);
 // The band checks on a summed surface (`summed` has members).
 std::vector<CheckResult> check_summed_bands(const reference::OceanCase& summed,
                                             const reference::FrameSequence& frames, double alpha);
