@@ -166,6 +166,20 @@ validation::CaseFile build_case(const SynthOptions& o) {
   }
   if (from_file) {
     c = validation::read_case_file(o.case_file);
+    if (c.is_cascade_set()) {
+      for (const char* flag : {"--n", "--ny", "--length", "--length-y", "--points"}) {
+        if (o.has(flag)) {
+          throw InvalidInput(fmt::format("{}: {} is a cascade set; each cascade's grid is its "
+                                         "[[cascade]] n and length",
+                                         flag, o.case_file));
+        }
+      }
+      if (lattice) {
+        throw InvalidInput(fmt::format("--impl {}: {} is a cascade set of grids; give a grid "
+                                       "backend",
+                                       o.impl, o.case_file));
+      }
+    }
     if (c.ocean.is_lattice() && !lattice) {
       throw InvalidInput(fmt::format("{} samples a lattice ([sampling] kind = \"lattice\"): "
                                      "synthesize it with --impl lattice[:fft=NAME]",
@@ -266,6 +280,12 @@ validation::CaseFile build_case(const SynthOptions& o) {
     ocean.set_lattice(std::move(chosen));
   }
   ocean.validate();
+  // Flags may have changed what the cascades share (the spectrum, and so each band's share of
+  // m0): the set's rules again.
+  for (std::size_t k = 0; k < c.cascades.size(); ++k) c.cascade_case(k).validate();
+  if (c.is_cascade_set() && c.relation == reference::CascadeRelation::additive) {
+    reference::require_bands_share_out(ocean, c.members());
+  }
   return c;
 }
 

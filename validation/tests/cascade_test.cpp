@@ -8,6 +8,11 @@
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
 #include <complex>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -22,6 +27,7 @@
 #include "swell/validation/case_file.hpp"
 #include "swell/validation/gate.hpp"
 #include "swell/validation/periodogram.hpp"
+#include "cli_support.hpp"
 
 namespace {
 
@@ -509,6 +515,101 @@ TEST(CascadeCatalogue, NestedBandsWhoseLowBandIsNotTheBroadBandsPart) {
                                       right_omega(low)),
                                right(c.cascade_case(1))});
   expect_caught(halved, "cascades.nested", "broad band's part × 0.5");
+}
+
+// ------------------------------------------------------------------ the command line
+
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("swell_cascade_cli_" + std::to_string(::getpid()) + "_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+// swell synth writes each cascade under its own folder, the sum under sum/ and a case.toml that
+// reads them back; swell gate passes the set (exit 0) and its JSON names the set's checks.
+TEST(CascadeCli, SynthWritesASetAndTheGatePassesIt) {
+  const fs::path dir = scratch("synth");
+  write_text(dir / "set.toml", pair_toml(4));
+  const auto synth = swell::test::swell("synth --case " + (dir / "set.toml").string() +
+                                        " --impl fftw --out " + (dir / "out").string());
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  for (const char* file : {"cascade0/frame_0003.exr", "cascade1/frame_0000.exr", "sum/frame_0003.exr",
+                           "case.toml"}) {
+    EXPECT_TRUE(fs::exists(dir / "out" / file)) << file << "\n" << synth.output;
+  }
+  EXPECT_NE(synth.output.find("the sum on 256×256 over 1000×1000 m"), std::string::npos) << synth.output;
+  const auto gate = swell::test::swell("gate --case " + (dir / "out/case.toml").string() +
+                                       " --json " + (dir / "gate.json").string());
+  EXPECT_EQ(gate.exit_code, 0) << gate.output;
+  std::ifstream json_file(dir / "gate.json");
+  const auto json = nlohmann::json::parse(json_file);
+  std::set<std::string> names;
+  for (const auto& check : json.at("checks")) names.insert(check.at("check").get<std::string>());
+  for (const char* name : {"cascade0.energy", "cascade1.band.outside", "cascades.independence",
+                           "sum.dispersion.residual", "sum.band.missing"}) {
+    EXPECT_TRUE(names.count(name)) << name;
+  }
+  // --sum no: the cascades only.
+  const auto without = swell::test::swell("synth --case " + (dir / "set.toml").string() +
+                                          " --impl fftw --sum no --out " + (dir / "nosum").string());
+  ASSERT_EQ(without.exit_code, 0) << without.output;
+  EXPECT_FALSE(fs::exists(dir / "nosum/sum"));
+  fs::remove_all(dir);
+}
+
+// A set the engine got wrong fails (exit 1) naming the bug: the frames of a cascade 0 that
+// carries up to 0.13 rad/m, gated against the declared 0.1.
+TEST(CascadeCli, AWrongSetFailsWithExitOne) {
+  const fs::path dir = scratch("wrong");
+  std::string wide = pair_toml(4);
+  wide.replace(wide.find("band = [0.000000, 0.100000]"), std::string("band = [0.000000, 0.100000]").size(),
+               "band = [0.000000, 0.130000]");
+  wide.replace(wide.find("band = [0.100000, 0.800000]"), std::string("band = [0.100000, 0.800000]").size(),
+               "band = [0.130000, 0.800000]");
+  write_text(dir / "wide.toml", wide);
+  ASSERT_EQ(swell::test::swell("synth --case " + (dir / "wide.toml").string() +
+                               " --impl fftw --sum no --out " + (dir / "out").string())
+                .exit_code,
+            0);
+  // The engine's cascade 0 frames under the declared set (cascade 1's frames are right for a
+  // band from 0.1 too: it just misses 0.1–0.13, which cascade 0 carries).
+  write_text(dir / "out/declared.toml", pair_toml(4));
+  const auto gate = swell::test::swell("gate --case " + (dir / "out/declared.toml").string());
+  EXPECT_EQ(gate.exit_code, 1) << gate.output;
+  EXPECT_NE(gate.output.find("cascades 0 and 1 both carry"), std::string::npos) << gate.output;
+  fs::remove_all(dir);
+}
+
+// Bad input exits 2 naming what is wrong, before anything is written.
+TEST(CascadeCli, BadSetsExitTwoNamingTheProblem) {
+  const fs::path dir = scratch("bad");
+  write_text(dir / "overlap.toml", sea_toml() + "\n[cascades]\n" + cascade_table(64, 1000, 0, 0.12, 0) +
+                                       cascade_table(64, 250, 0.1, 0.8, 1));
+  const auto overlap = swell::test::swell("synth --case " + (dir / "overlap.toml").string() +
+                                          " --impl fftw --out " + (dir / "out").string());
+  EXPECT_EQ(overlap.exit_code, 2);
+  EXPECT_NE(overlap.output.find("overlap on 0.1–0.12 rad/m"), std::string::npos) << overlap.output;
+  EXPECT_FALSE(fs::exists(dir / "out" / "case.toml"));
+  write_text(dir / "set.toml", pair_toml());
+  const auto flag = swell::test::swell("synth --case " + (dir / "set.toml").string() +
+                                       " --impl fftw --n 128 --out " + (dir / "out").string());
+  EXPECT_EQ(flag.exit_code, 2);
+  EXPECT_NE(flag.output.find("each cascade's grid is its [[cascade]] n and length"), std::string::npos)
+      << flag.output;
+  const auto missing = swell::test::swell("gate --case " + (dir / "set.toml").string());
+  EXPECT_EQ(missing.exit_code, 2) << missing.output;
+  const auto fit = swell::test::swell("fit --input " + (dir / "out").string() + " --case " +
+                                      (dir / "set.toml").string());
+  EXPECT_EQ(fit.exit_code, 2);
+  EXPECT_NE(fit.output.find("takes a single-grid case"), std::string::npos) << fit.output;
+  fs::remove_all(dir);
 }
 
 // ------------------------------------------------------------------ calibration
