@@ -170,23 +170,6 @@ EmptyRuns empty_runs(const SurfaceSpectrum& s, const std::vector<double>& mu, do
   return out;
 }
 
-CheckResult statistical_result(std::string check, std::string subject, double measured,
-                               double expected, double p, double alpha, std::string criterion,
-                               std::string reason) {
-  CheckResult r;
-  r.check = std::move(check);
-  r.subject = std::move(subject);
-  r.measured = measured;
-  r.expected = expected;
-  r.tolerance = alpha;
-  r.p_value = p;
-  r.alpha = alpha;
-  r.passed = p >= alpha;
-  r.criterion = std::move(criterion);
-  r.reason = std::move(reason);
-  return r;
-}
-
 CheckResult exact_result(std::string check, std::string subject, double measured, double bound,
                          bool passed, std::string criterion, std::string reason) {
   CheckResult r;
@@ -221,7 +204,7 @@ CheckResult missing_result(const std::string& name, const std::string& subject,
                          where_empty(runs.k_lo, runs.k_hi, runs.lost_mu / m0), runs.longest,
                          runs.p_value);
   }
-  return statistical_result(
+  return statistical_check(
       name, subject, runs.longest, 0, runs.p_value, alpha,
       fmt::format("p ≥ α = {:.0e} (runs of I < {:g} μ over {} wave vectors, union bound)", alpha,
                   kEmptyFraction, runs.places),
@@ -550,7 +533,7 @@ CheckResult energy_check(const std::vector<Analysis>& cascades, double alpha) {
     }
     reason = explained + "; " + reason;
   }
-  return statistical_result(
+  return statistical_check(
       "cascades.energy", fmt::format("{} cascades", cascades.size()), measured, expected, p, alpha,
       fmt::format("p ≥ α = {:.0e} (two-sided, exact law of Σ I over the cascades)", alpha), reason);
 }
@@ -637,7 +620,7 @@ CheckResult independence_check(const std::vector<Analysis>& cascades, double alp
   }
   // The p-value reported is the worst pair's, scaled by the pairs (Bonferroni).
   const double p_family = std::min(1.0, worst_p * double(std::max<std::size_t>(1, pairs)));
-  return statistical_result(
+  return statistical_check(
       "cascades.independence", fmt::format("{} cascades", cascades.size()), worst_r, 0, p_family,
       alpha,
       fmt::format("p ≥ α = {:.0e} (|r|² ~ Beta(1, M − 1) per pair, Bonferroni over {} pairs)",

@@ -44,6 +44,23 @@ CheckResult range_check(std::string check, std::string subject, double measured,
               measured >= lower && measured <= upper, std::move(what));
 }
 
+CheckResult statistical_check(std::string check, std::string subject, double measured,
+                              double expected, double p_value, double alpha,
+                              std::string criterion, std::string reason) {
+  CheckResult r;
+  r.check = std::move(check);
+  r.subject = std::move(subject);
+  r.measured = measured;
+  r.expected = expected;
+  r.tolerance = alpha;
+  r.criterion = std::move(criterion);
+  r.p_value = p_value;
+  r.alpha = alpha;
+  r.passed = p_value >= alpha;  // false for NaN
+  r.reason = std::move(reason);
+  return r;
+}
+
 bool all_passed(const std::vector<CheckResult>& results) {
   for (const auto& r : results) {
     if (!r.passed) return false;

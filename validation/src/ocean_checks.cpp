@@ -39,23 +39,6 @@ double mean_square(const std::vector<double>& v) {
   return sum / double(v.size());
 }
 
-// A statistical result: passed ⇔ p ≥ α.
-CheckResult statistical(std::string check, std::string subject, double measured, double expected,
-                        double p_value, double alpha, std::string criterion, std::string reason) {
-  CheckResult r;
-  r.check = std::move(check);
-  r.subject = std::move(subject);
-  r.measured = measured;
-  r.expected = expected;
-  r.tolerance = alpha;
-  r.criterion = std::move(criterion);
-  r.p_value = p_value;
-  r.alpha = alpha;
-  r.passed = p_value >= alpha;  // false for NaN
-  r.reason = std::move(reason);
-  return r;
-}
-
 // An exact result: passed ⇔ error ≤ bound.
 CheckResult bounded(std::string check, std::string subject, double error, double bound,
                     std::string criterion, std::string reason) {
@@ -461,7 +444,7 @@ Results check_energy(const Analysis& a, OceanCheckReport& report) {
     }
     if (!meaning.empty()) reason += " — " + meaning;
   }
-  return {statistical("energy", a.subject(), measured, law.mean(), p, alpha,
+  return {statistical_check("energy", a.subject(), measured, law.mean(), p, alpha,
                       fmt::format("p ≥ α = {:.0e} (two-sided, exact law of Σ I)", alpha),
                       reason)};
 }
@@ -522,7 +505,7 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
     }
   }
   Results out;
-  out.push_back(statistical(
+  out.push_back(statistical_check(
       "spectrum.shape", a.subject(), worst_ratio, 1.0, p, alpha,
       fmt::format("p ≥ α = {:.0e} (Gamma law per ring, Fisher's method over {} rings)", alpha, rings),
       fmt::format("periodogram/model {:.3f}…{:.3f} over {} rings of |k| ({} wave vectors); "
@@ -608,7 +591,7 @@ Results check_moments(const Analysis& a, OceanCheckReport& report) {
     const double lo = 4 * std::sqrt(law.quantile(alpha / 2)), hi = 4 * std::sqrt(law.quantile(1 - alpha / 2));
     const double hs = 4 * std::sqrt(measured[0]), hs_expected = 4 * std::sqrt(expected[0]);
     const double p = law.two_sided_p(measured[0]);
-    out.push_back(statistical("moments.hs", a.subject(), hs, hs_expected, p, alpha,
+    out.push_back(statistical_check("moments.hs", a.subject(), hs, hs_expected, p, alpha,
                               fmt::format("p ≥ α = {:.1e}: Hs in [{:.4g}, {:.4g}] m", alpha, lo, hi),
                               fmt::format("Hs {:.4g} m against {:.4g} m (band-limited){}", hs,
                                           hs_expected, p < alpha ? " — wrong wave height" : "")));
@@ -639,7 +622,7 @@ Results check_moments(const Analysis& a, OceanCheckReport& report) {
     const double p = std::abs(std::log(t / t_expected)) <= rounding
                          ? 1.0
                          : std::min(1.0, 2 * std::min(below, 1 - below));
-    out.push_back(statistical(fmt::format("moments.{}", name), a.subject(), t, t_expected, p, alpha,
+    out.push_back(statistical_check(fmt::format("moments.{}", name), a.subject(), t, t_expected, p, alpha,
                               fmt::format("p ≥ α = {:.1e} (saddlepoint law of m0/m_n; delta-method z = {:.2f})", alpha, z),
                               fmt::format("{} {:.4g} s against {:.4g} s (z = {:.2f}){}", name, t,
                                           t_expected, z,
@@ -687,7 +670,7 @@ Results check_moments(const Analysis& a, OceanCheckReport& report) {
   }
   const double tp = bin_period(peak), tp_expected = bin_period(expected_peak);
   const bool admissible = band[peak].second >= largest_lower;
-  CheckResult tp_result = statistical(
+  CheckResult tp_result = statistical_check(
       "moments.tp", a.subject(), tp, tp_expected, admissible ? 1.0 : 0.0, alpha,
       fmt::format("peak bin among those that can be the peak at α = {:.1e}: Tp in [{:.4g}, {:.4g}] s",
                   alpha, t_lo, t_hi),
@@ -996,7 +979,7 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
     }
   }
   Results out;
-  out.push_back(statistical(
+  out.push_back(statistical_check(
       "direction.distribution", a.subject(), theta_measured, theta_expected, p, alpha,
       fmt::format("p ≥ α = {:.1e} (χ²({}) of the first two circular harmonics)", alpha, rank),
       fmt::format("mean direction {:.1f}° (spread {:.1f}°) against {:.1f}° ({:.1f}°), "
@@ -1020,7 +1003,7 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
   }
   const double z = sum / std::sqrt(double(count));
   const double p_travel = stats::normal_two_sided_p(z);
-  out.push_back(statistical(
+  out.push_back(statistical_check(
       "direction.travelling", a.subject(), z, 0.0, p_travel, alpha,
       fmt::format("p ≥ α = {:.1e} (normal, {} wave vectors)", alpha, count),
       fmt::format("waves at k and −k independent: z = {:.2f}{}", z,
@@ -1074,11 +1057,11 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
                                     moment_rounding);
   const double z_skew = skewness / sd_skew, z_kurt = kurtosis / sd_kurt;
   const double p_skew = stats::normal_two_sided_p(z_skew), p_kurt = stats::normal_two_sided_p(z_kurt);
-  out.push_back(statistical("statistics.skewness", a.subject(), skewness, 0.0, p_skew, alpha,
+  out.push_back(statistical_check("statistics.skewness", a.subject(), skewness, 0.0, p_skew, alpha,
                             fmt::format("p ≥ α = {:.1e}, sd {:.3g} from the spectrum", alpha, sd_skew),
                             fmt::format("skewness of heights {:.3g} (z = {:.2f}){}", skewness, z_skew,
                                         p_skew < alpha ? " — heights are not Gaussian" : "")));
-  out.push_back(statistical("statistics.kurtosis", a.subject(), kurtosis, 0.0, p_kurt, alpha,
+  out.push_back(statistical_check("statistics.kurtosis", a.subject(), kurtosis, 0.0, p_kurt, alpha,
                             fmt::format("p ≥ α = {:.1e}, sd {:.3g} from the spectrum", alpha, sd_kurt),
                             fmt::format("excess kurtosis of heights {:.3g} (z = {:.2f}){}", kurtosis,
                                         z_kurt, p_kurt < alpha ? " — heights are not Gaussian" : "")));
@@ -1100,7 +1083,7 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   }
   const double a2 = stats::anderson_darling_statistic(cdf, log_survival);
   const double p_ad = stats::anderson_darling_exponential_p(a2, int(cdf.size()));
-  out.push_back(statistical(
+  out.push_back(statistical_check(
       "statistics.gaussian_amplitudes", a.subject(), a2, 1.0, p_ad, alpha,
       fmt::format("p ≥ α = {:.1e} (Anderson–Darling, I/μ exponential, scale fitted, n = {})", alpha,
                   cdf.size()),
@@ -1142,7 +1125,7 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   hs_max = std::max(hs_max, 4 * std::sqrt(m0_first));
   const double frames_compared = double(times.size() - 1);
   const double p_steady = std::min(1.0, frames_compared * stats::normal_two_sided_p(worst_z));
-  out.push_back(statistical(
+  out.push_back(statistical_check(
       "statistics.hs_steady", a.subject(), 4 * std::sqrt(m0_first), hs_max - hs_min, p_steady, alpha,
       fmt::format("p ≥ α = {:.1e} (Bonferroni over {} frames)", alpha, times.size() - 1),
       fmt::format("Hs {:.4g}…{:.4g} m over {} frames; largest change z = {:.2f} at frame {}{}", hs_min,

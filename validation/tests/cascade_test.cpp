@@ -342,6 +342,7 @@ void expect_caught(const GateReport& report, const std::string& name, const std:
   const auto* r = find(report, name);
   ASSERT_NE(r, nullptr) << name << " did not run\n" << describe(report);
   EXPECT_FALSE(r->passed) << name << " passed\n" << describe(report);
+  std::cout << "[ catalogue ] " << name << ": " << r->reason << "\n";
   EXPECT_NE(r->reason.find(words), std::string::npos)
       << name << ": \"" << r->reason << "\" does not say \"" << words << "\"";
 }

@@ -36,6 +36,11 @@ CheckResult error_bound_check(std::string check, std::string subject, double err
 CheckResult range_check(std::string check, std::string subject, double measured, double lower,
                         double upper, std::string what);
 
+// A statistical result with its own reason: passed ⇔ p ≥ α (false for a NaN p), tolerance = α.
+CheckResult statistical_check(std::string check, std::string subject, double measured,
+                              double expected, double p_value, double alpha,
+                              std::string criterion, std::string reason);
+
 bool all_passed(const std::vector<CheckResult>& results);
 
 }  // namespace swell::validation
