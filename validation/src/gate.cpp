@@ -55,6 +55,7 @@ std::vector<std::string> statistical_checks(SpectrumScale scale, std::size_t fra
   checks.push_back("spectrum");
   checks.push_back("moments");
   if (frames >= 2) checks.push_back("direction");
+  checks.push_back("randomness");
   checks.push_back("statistics");
   return checks;
 }
@@ -257,7 +258,7 @@ struct CheckGroup {
 const std::vector<CheckGroup>& check_groups() {
   static const std::vector<CheckGroup> groups = {
       {{"hermitian", "parseval", "energy", "spectrum", "moments", "statistics"}, false},
-      {{"dispersion", "direction"}, false},
+      {{"dispersion", "direction", "randomness"}, false},
       {{"derived"}, true}};
   return groups;
 }

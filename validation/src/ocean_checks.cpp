@@ -554,6 +554,33 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
     where += fmt::format("; {:.0f} % of it near the Nyquist corner — a checkerboard (−1)^(i+j)",
                          100 * stray_corner / stray);
   }
+  // Heave: k = 0 is the mean level. An artist sees the whole patch rise and fall (or sit
+  // offset), not "energy at (0, 0)".
+  if (largest_at == 0 && stray > bound) {
+    const double share = a.periodogram0(0) / a.mean_square0();
+    double level_sum = 0, level_square = 0, level_min = 1e300, level_max = -1e300;
+    const auto frames = a.frames().frames.size();
+    for (std::size_t f = 0; f < frames; ++f) {
+      const auto& h = a.frames().field(int(f), Field::height);
+      const double level = std::accumulate(h.begin(), h.end(), 0.0) / double(h.size());
+      level_sum += level;
+      level_square += level * level;
+      level_min = std::min(level_min, level);
+      level_max = std::max(level_max, level);
+    }
+    const double rms = std::sqrt(level_square / double(frames));
+    const double rounding_level = 16 * a.unit_roundoff() * a.log2n() * std::sqrt(a.mean_square0());
+    if (frames > 1 && level_max - level_min > rounding_level) {
+      where = fmt::format("k = 0 carries {:.0f} % of the height variance: the mean level moves (heave) — "
+                          "the whole patch rises and falls, rms {:.3g} m, from {:.3g} to {:.3g} m over the "
+                          "frames",
+                          100 * share, rms, level_min, level_max);
+    } else {
+      where = fmt::format("k = 0 carries {:.0f} % of the height variance: the mean level sits at {:.3g} m "
+                          "instead of 0",
+                          100 * share, level_sum / double(frames));
+    }
+  }
   const bool ok = stray <= bound;
   out.push_back(bounded(
       "spectrum.unexpected_energy", a.subject(), stray / a.mean_square0(), bound / a.mean_square0(),
@@ -785,6 +812,165 @@ std::string explain_dispersion(const OceanCase& c, const std::vector<MeasuredOme
   return "";
 }
 
+// Least squares of a1 e^(−iω1t) + b1 e^(iω1t) + a2 e^(−iω2t) + b2 e^(iω2t) to y_f at t_f: the
+// residual Σ |y − fit|² (infinite when the four columns are nearly dependent).
+double two_frequency_residual(double omega1, double omega2, const std::vector<double>& times,
+                              const std::vector<Complex>& y) {
+  const std::size_t count = times.size();
+  // Normal equations AᴴA x = Aᴴy of the four columns, solved by Gaussian elimination with
+  // partial pivoting; a pivot below 10⁻⁹ of the largest diagonal means dependent columns.
+  std::array<std::array<Complex, 5>, 4> m{};
+  thread_local std::vector<std::array<Complex, 4>> rows;
+  rows.resize(count);
+  for (std::size_t f = 0; f < count; ++f) {
+    const Complex e1 = std::polar(1.0, -reference::reduced_phase(omega1, times[f]));
+    const Complex e2 = std::polar(1.0, -reference::reduced_phase(omega2, times[f]));
+    rows[f] = {e1, std::conj(e1), e2, std::conj(e2)};
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) m[i][j] += std::conj(rows[f][i]) * rows[f][j];
+      m[i][4] += std::conj(rows[f][i]) * y[f];
+    }
+  }
+  const double scale = double(count);
+  for (int col = 0; col < 4; ++col) {
+    int pivot = col;
+    for (int r = col + 1; r < 4; ++r) {
+      if (std::abs(m[r][col]) > std::abs(m[pivot][col])) pivot = r;
+    }
+    if (std::abs(m[pivot][col]) < 1e-9 * scale) return std::numeric_limits<double>::infinity();
+    std::swap(m[col], m[pivot]);
+    for (int r = 0; r < 4; ++r) {
+      if (r == col) continue;
+      const Complex factor = m[r][col] / m[col][col];
+      for (int c = col; c < 5; ++c) m[r][c] -= factor * m[col][c];
+    }
+  }
+  std::array<Complex, 4> x{};
+  for (int i = 0; i < 4; ++i) x[i] = m[i][4] / m[i][i];
+  double residual = 0;
+  for (std::size_t f = 0; f < count; ++f) {
+    Complex fit = 0;
+    for (int i = 0; i < 4; ++i) fit += rows[f][i] * x[i];
+    residual += std::norm(y[f] - fit);
+  }
+  return residual;
+}
+
+// Mixed frequencies (issue 16): when one frequency pair ±ω(k) per wave vector leaves much of
+// the energy, on the most energetic wave vectors:
+//   1. two pairs at the frequencies an offset lattice makes, ω(|c k ± d (Δkx, Δky)|) for
+//      (c, d) = (2, 1), (1, ½), (1, 1), explaining the frames to 10⁻⁶ of the energy on 4 in 5 wave
+//      vectors, are named as such (over a short record two close frequencies also look like one
+//      wrong ω to 10⁻³; these fits are exact);
+//   2. one pair at a free ω (best_omega) explaining the frames (median residual < 10⁻³ of the
+//      energy) is a single wrong dispersion relation — explain_dispersion names it; not mixed;
+//   3. otherwise two free pairs (a log grid over [ω/4, 4ω]², coordinate golden-section
+//      refinement), explaining them to 10⁻³ and both carrying ≥ 1 % of the energy, are reported
+//      as ratios to ω(k).
+// Empty when none applies.
+std::string explain_mixed_frequencies(const Analysis& a, const std::vector<const WaveFit*>& strongest,
+                                      double max_omega) {
+  const auto& series = a.wave_series();
+  const auto& times = a.times();
+  if (strongest.empty()) return "";
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  auto series_of = [&](const WaveFit* f) -> const std::vector<Complex>& {
+    return series[std::size_t(f->wave - a.waves().data())];
+  };
+  // 1. The offsets engines make: exact (10⁻⁶) where a single free ω explains only
+  // approximately over a short record.
+  const auto& c = a.ocean_case();
+  const double dkx = a.sampling().dkx(), dky = a.sampling().dky();
+  struct Hypothesis {
+    double scale, offset;
+    const char* text;
+  };
+  for (const Hypothesis& h : {Hypothesis{2, 1, "ω(|2k ± Δk|): the wave numbers are offset from the grid "
+                                               "(2k + Δk for bin k, paired with a bin one off)"},
+                              Hypothesis{1, 0.5, "ω(|k ± Δk/2|): the wave numbers are offset from the "
+                                                 "grid by half a bin"},
+                              Hypothesis{1, 1, "ω(|k ± Δk|): each bin is paired with a neighbour"}}) {
+    int matching = 0;
+    for (const WaveFit* f : strongest) {
+      const double kx = f->wave->kx, ky = f->wave->ky;
+      const double plus = c.omega(std::hypot(h.scale * kx + h.offset * dkx, h.scale * ky + h.offset * dky));
+      const double minus = c.omega(std::hypot(h.scale * kx - h.offset * dkx, h.scale * ky - h.offset * dky));
+      const double residual = two_frequency_residual(plus, minus, times, series_of(f));
+      matching += residual <= 1e-6 * f->energy;
+    }
+    if (matching * 5 >= int(strongest.size()) * 4) {
+      return fmt::format("each bin holds two frequencies, at {} ({} of the {} most energetic wave "
+                         "vectors)",
+                         h.text, matching, strongest.size());
+    }
+  }
+  // 2. One free frequency.
+  std::vector<double> single;
+  for (const WaveFit* f : strongest) {
+    const auto& y = series_of(f);
+    const double omega = best_omega(f->wave->omega, max_omega, times, y);
+    Complex p, q;
+    double residual = 0;
+    single.push_back(fit_two_waves(omega, times, y, p, q, residual) ? residual / std::max(f->energy, 1e-300)
+                                                                    : 1.0);
+  }
+  if (median(single) < 1e-3) return "";
+  // 3. Two free frequencies.
+  std::vector<double> residuals, r1, r2;
+  for (const WaveFit* f : strongest) {
+    const auto& y = series_of(f);
+    const double omega = f->wave->omega;
+    const double lo = omega / 4, hi = std::min(4 * omega, max_omega);
+    if (!(hi > lo)) continue;
+    const int steps = 96;
+    auto at = [&](int i) { return lo * std::pow(hi / lo, double(i) / steps); };
+    double best = std::numeric_limits<double>::infinity(), w1 = omega, w2 = omega;
+    for (int i = 0; i <= steps; ++i) {
+      for (int j = i + 1; j <= steps; ++j) {
+        const double r = two_frequency_residual(at(i), at(j), times, y);
+        if (r < best) {
+          best = r;
+          w1 = at(i);
+          w2 = at(j);
+        }
+      }
+    }
+    const double step = std::pow(hi / lo, 1.0 / steps);
+    for (int round = 0; round < 4; ++round) {
+      for (int which = 0; which < 2; ++which) {
+        double& moving = which == 0 ? w1 : w2;
+        double left = moving / step, right = moving * step;
+        auto residual = [&](double x) {
+          return which == 0 ? two_frequency_residual(x, w2, times, y) : two_frequency_residual(w1, x, times, y);
+        };
+        const double golden = 0.5 * (std::sqrt(5.0) - 1);
+        for (int i = 0; i < 60 && right - left > 1e-13 * right; ++i) {
+          const double x1 = right - golden * (right - left), x2 = left + golden * (right - left);
+          if (residual(x1) < residual(x2)) right = x2; else left = x1;
+        }
+        moving = 0.5 * (left + right);
+      }
+    }
+    // Each pair must carry its share: the second pair alone must explain ≥ 1 % more.
+    Complex p, q;
+    double alone1 = 0, alone2 = 0;
+    if (!fit_two_waves(w1, times, y, p, q, alone1)) alone1 = f->energy;
+    if (!fit_two_waves(w2, times, y, p, q, alone2)) alone2 = f->energy;
+    const double both = two_frequency_residual(w1, w2, times, y);
+    if (std::min(alone1, alone2) - both < 1e-2 * f->energy) continue;
+    residuals.push_back(both / std::max(f->energy, 1e-300));
+    r1.push_back(std::min(w1, w2) / omega);
+    r2.push_back(std::max(w1, w2) / omega);
+  }
+  if (residuals.size() * 2 < strongest.size() || !(median(residuals) < 1e-3)) return "";
+  return fmt::format("each bin holds two frequencies, at {:.3f}× and {:.3f}× ω(k) (medians over {} of "
+                     "the most energetic wave vectors): the frames mix two wave numbers per bin",
+                     median(r1), median(r2), residuals.size());
+}
+
 Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
   if (a.times().size() < 3) {
     report.skipped.push_back("dispersion: needs ≥ 3 frames (the fit has 2 complex unknowns per k)");
@@ -840,8 +1026,15 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
       }
     }
   }
+  // More than 1 % left by one frequency pair: look for two.
+  std::string mixed;
+  if (fraction > std::max(bound, 1e-2) && a.times().size() >= 6) {
+    mixed = explain_mixed_frequencies(a, strongest, max_omega);
+  }
   std::string diagnosis;
-  if (fraction > bound) {
+  if (!mixed.empty()) {
+    diagnosis = " — " + mixed;
+  } else if (fraction > bound) {
     diagnosis = " — the waves do not evolve as the case's dispersion says";
     if (!ratios.empty() && std::abs(ratio - 1) > 1e-3) {
       diagnosis += fmt::format(" (ω is {:.3f}× the case's", ratio);
@@ -857,7 +1050,14 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
       fmt::format("fit a e^(−iωt) + b e^(iωt) at ω(k) leaves {:.2e} of the energy over {} wave "
                   "vectors and {} frames{}",
                   fraction, fits.size(), a.times().size(), diagnosis)));
-  if (!ratios.empty()) {
+  if (!mixed.empty()) {
+    // No single ratio exists: the measured ω is not one number per wave vector.
+    const double omega_bound = std::max(1e-6, 64 * a.unit_roundoff() * a.log2n());
+    out.push_back(bounded("dispersion.omega", a.subject(), std::numeric_limits<double>::quiet_NaN(),
+                          omega_bound,
+                          fmt::format("|ω measured / ω(k) − 1| ≤ {:.1e} (energy-weighted median)", omega_bound),
+                          "no single ω per wave vector — " + mixed));
+  } else if (!ratios.empty()) {
     const double error = std::abs(ratio - 1);
     const double omega_bound = std::max(1e-6, 64 * a.unit_roundoff() * a.log2n());
     out.push_back(bounded(
@@ -1013,6 +1213,103 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
   return out;
 }
 
+// ------------------------------------------------------------------ randomness
+
+// Reused random numbers (issue 16): the initial amplitudes recovered from the frames — h̃0(k)
+// and h̃0(−k) from the two-wave fit at every identifiable wave vector, or ĥ(k, 0) over the half
+// plane from one frame at t = 0 — divided by their expected rms, z = h̃0/√τ, are independent
+// unit complex normals on a right surface. Two distinct wave vectors that drew the same pair
+// have the same z (up to the recovery's rounding σ). The check counts pairs closer than
+// 8 √(σ1² + σ2²); for independent z, d = z1 − z2 ~ CN(0, 2) and P(|d| < ε) = 1 − e^(−ε²/2), so
+// the count is Poisson with mean λ0 = Σ pairs (1 − e^(−ε²/2)) ≤ 32 (M − 1) Σ σ² (closed form),
+// and p = P(Poisson(λ0) ≥ count). Only waves recovered to σ ≤ 10⁻⁵ enter (λ0 ≤ 32 M² 10⁻¹⁰).
+// σ² = s²/(F τ): white rounding of variance s² = (16 u log2 N)² mean h² / N per coefficient
+// and frame, through a least-squares fit over F frames.
+Results check_randomness(const Analysis& a, OceanCheckReport& report) {
+  struct Draw {
+    Complex z;
+    double sigma = 0;
+    int n = 0, m = 0;
+  };
+  std::vector<Draw> draws;
+  const double s2 = std::pow(16 * a.unit_roundoff() * a.log2n(), 2) * a.mean_square0() / double(a.count());
+  constexpr double kLargestSigma = 1e-5;
+  const auto frames = double(a.times().size());
+  const Sampling& g = a.sampling();
+  if (a.times().size() >= 2) {
+    for (const WaveFit& f : a.wave_fits()) {
+      const auto [n, m] = g.wave_index(f.wave->index);
+      for (int side = 0; side < 2; ++side) {
+        const double tau = side == 0 ? f.wave->tau_plus : f.wave->tau_minus;
+        if (!(tau > 0)) continue;
+        const double sigma = std::sqrt(s2 / (frames * tau));
+        if (sigma > kLargestSigma) continue;
+        const Complex amplitude = side == 0 ? f.a : std::conj(f.b);  // h̃0(k), h̃0(−k)
+        draws.push_back({amplitude / std::sqrt(tau), sigma, side == 0 ? n : -n, side == 0 ? m : -m});
+      }
+    }
+    if (draws.empty() && a.wave_fits().empty()) {
+      report.skipped.push_back("randomness: no wave vector's two waves are identifiable from these "
+                               "frame times");
+      return {};
+    }
+  } else if (a.times().front() == 0) {
+    for (const Wave& w : a.waves()) {
+      const double sigma = std::sqrt(s2 / w.mu);
+      if (sigma > kLargestSigma) continue;
+      const auto [n, m] = g.wave_index(w.index);
+      draws.push_back({a.spectrum0()[w.index] / std::sqrt(w.mu), sigma, n, m});
+    }
+  } else {
+    report.skipped.push_back("randomness: one frame at t ≠ 0 cannot tell h̃0(k) from conj h̃0(−k)");
+    return {};
+  }
+  // Close pairs, by a sweep in Re z.
+  std::sort(draws.begin(), draws.end(), [](const Draw& x, const Draw& y) { return x.z.real() < y.z.real(); });
+  double sigma_max = 0, sigma_sum = 0;
+  for (const Draw& d : draws) {
+    sigma_max = std::max(sigma_max, d.sigma);
+    sigma_sum += d.sigma * d.sigma;
+  }
+  const double reach = 8 * std::sqrt(2.0) * sigma_max;
+  long long pairs = 0, mirror_pairs = 0;
+  std::vector<char> shared(draws.size(), 0);
+  for (std::size_t i = 0; i < draws.size(); ++i) {
+    for (std::size_t j = i + 1; j < draws.size() && draws[j].z.real() - draws[i].z.real() <= reach; ++j) {
+      const double epsilon = 8 * std::hypot(draws[i].sigma, draws[j].sigma);
+      if (std::abs(draws[i].z - draws[j].z) > epsilon) continue;
+      ++pairs;
+      if (draws[i].n == -draws[j].n && draws[i].m == -draws[j].m) ++mirror_pairs;
+      shared[i] = shared[j] = 1;
+    }
+  }
+  const double count = double(draws.size());
+  const double lambda0 = count > 1 ? 32 * (count - 1) * sigma_sum : 0;
+  // P(Poisson(λ0) ≥ pairs) = regularized lower incomplete gamma P(pairs, λ0).
+  const double p = pairs == 0 ? 1.0 : stats::gamma_lower_p(double(pairs), lambda0);
+  const double alpha = a.options().alpha;
+  const long long sharing = std::count(shared.begin(), shared.end(), 1);
+  std::string reason = fmt::format("{} pairs of the {} recovered amplitudes coincide (chance: "
+                                   "{:.2g} expected, p = {:.2g})",
+                                   pairs, draws.size(), lambda0, p);
+  if (p < alpha) {
+    reason = mirror_pairs == pairs
+                 ? fmt::format("h̃0(k) and h̃0(−k) share their random pair at {} wave vectors — the same "
+                               "random numbers for k and −k; ",
+                               pairs)
+                 : fmt::format("{:.1f} % of the wave vectors ({} of {}) share their random pair with "
+                               "another: reused random numbers (a hash of the index that collides, or "
+                               "a seed per row?); ",
+                               100 * double(sharing) / count, sharing, draws.size()) +
+                       reason;
+  }
+  return {statistical_check(
+      "randomness.reused_numbers", a.subject(), double(pairs), lambda0, p, alpha,
+      fmt::format("p ≥ α = {:.1e} (coinciding pairs of h̃0/√τ, Poisson law, {} amplitudes)", alpha,
+                  draws.size()),
+      reason)};
+}
+
 // ------------------------------------------------------------------ statistics
 
 Results check_statistics(const Analysis& a, OceanCheckReport& report) {
@@ -1136,6 +1433,112 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
 
 // ------------------------------------------------------------------ derived fields
 
+// Why a slope or displacement field disagrees with its definition from the height field, on
+// frame 0 (issue 16): the field against four templates — its own definition and the other
+// axis's, each from the height as given and from the height transposed (square grids) — each
+// with its least-squares factor c (λ for displacements, 1 for slopes). A template explains the
+// field when its residual's rms is within max(10 × the check's bound, 10⁻³) of the field's;
+// then the message names it: swapped channels, a transposed field, another λ, a flipped sign.
+// A mean (k = 0) that carries most of the misfit is a sway of the whole patch.
+std::string explain_derived(const Analysis& a, Field field, double bound) {
+  const Sampling& g = a.sampling();
+  const bool displacement = field == Field::disp_x || field == Field::disp_y;
+  const bool along_x = field == Field::slope_x || field == Field::disp_x;
+  const double lambda = displacement ? a.ocean_case().choppiness : 1.0;
+  const std::string name = reference::field_name(field);
+  const std::string other_name =
+      reference::field_name(displacement ? (along_x ? Field::disp_y : Field::disp_x)
+                                         : (along_x ? Field::slope_y : Field::slope_x));
+  const auto& got = a.frames().field(0, field);
+  const double got_power = mean_square(got);
+  // Sway: the field's mean carries most of what is wrong.
+  const double mean = std::accumulate(got.begin(), got.end(), 0.0) / double(got.size());
+  const auto& spectrum = a.spectrum0();
+  auto template_field = [&](bool x_axis, bool transposed) {
+    std::vector<Complex> s(spectrum.size());
+    const int nx = g.grid().nx;
+    for (std::size_t e = 0; e < spectrum.size(); ++e) {
+      if (!g.carries_energy(e)) continue;
+      const auto [n, m] = g.wave_index(e);
+      const double kx = n * g.dkx(), ky = m * g.dky(), k = std::hypot(kx, ky);
+      const double component = x_axis ? kx : ky;
+      const Complex multiplier = displacement ? Complex(0, component / k) : Complex(0, component);
+      // The transposed height's coefficient at (n, m) is the height's at (m, n).
+      const std::size_t source =
+          transposed ? std::size_t((n + nx) % nx) * nx + std::size_t((m + nx) % nx) : e;
+      s[e] = multiplier * spectrum[source];
+    }
+    return field_from_spectrum(s, g);
+  };
+  struct Candidate {
+    bool other_axis, transposed;
+    double factor = 0, residual = 1e300;  // residual: rms misfit relative to the field's rms
+  };
+  std::vector<Candidate> candidates = {{false, false}, {true, false}};
+  const auto& grid = g.grid();
+  if (!g.is_lattice() && grid.nx == grid.ny && grid.lx == grid.ly) {
+    candidates.push_back({false, true});
+    candidates.push_back({true, true});
+  }
+  for (auto& c : candidates) {
+    const auto t = template_field(c.other_axis ? !along_x : along_x, c.transposed);
+    double tt = 0, gt = 0;
+    for (std::size_t p = 0; p < t.size(); ++p) {
+      tt += t[p] * t[p];
+      gt += got[p] * (t[p]);
+    }
+    c.factor = tt > 0 ? gt / tt : 0;
+    double left = 0;
+    for (std::size_t p = 0; p < t.size(); ++p) left += std::pow(got[p] - c.factor * t[p], 2);
+    c.residual = got_power > 0 ? std::sqrt(left / double(t.size()) / got_power) : 0;
+  }
+  const auto best = *std::min_element(candidates.begin(), candidates.end(),
+                                      [](const Candidate& x, const Candidate& y) { return x.residual < y.residual; });
+  const double explains = std::max(10 * bound, 1e-3);
+  const double own_residual = candidates[0].residual;
+  if (mean * mean > 0.5 * own_residual * own_residual * got_power && std::abs(mean) > 0) {
+    return fmt::format("{} sways: its mean {:.3g} m moves the whole patch sideways (k = 0 carries "
+                       "what the conventions leave empty)",
+                       name, mean);
+  }
+  const std::string factor_name = displacement ? "λ" : "scale";
+  const bool same_size = std::abs(std::abs(best.factor) / lambda - 1) < 1e-3;
+  const bool flipped = best.factor * lambda < 0;
+  if (best.residual <= explains) {
+    std::string what;
+    if (best.other_axis && best.transposed) {
+      what = fmt::format("{} holds {}'s definition applied to the transposed height", name, other_name);
+    } else if (best.other_axis) {
+      what = fmt::format("{} and {} swapped ({} holds {}'s definition)", name, other_name, name,
+                         other_name);
+    } else if (best.transposed) {
+      what = fmt::format("the field is transposed (x and y exchanged) relative to the height: {} "
+                         "matches its definition from the transposed height",
+                         name);
+    }
+    if (what.empty()) {  // its own definition, another factor
+      if (flipped && same_size) {
+        return fmt::format("sign flipped: the best-fit {} is {:.4g} against the case's {:g} "
+                           "(conventions: D ↔ +i k/|k| h̃; Tessendorf's −i needs λ < 0)",
+                           factor_name, best.factor, lambda);
+      }
+      return fmt::format("{} is {:.4g}, not the case's {:g} (least squares; it explains the "
+                         "field to {:.1e})",
+                         factor_name, best.factor, lambda, best.residual);
+    }
+    if (!same_size || flipped) {
+      what += fmt::format(", with {} = {:.4g} (the case's {:g})", factor_name, best.factor, lambda);
+    } else {
+      what += fmt::format(" ({} = {:.4g}, the case's)", factor_name, best.factor);
+    }
+    return what;
+  }
+  return fmt::format("inconsistent with the height field: no {} explains it (the best, {} = {:.3g} "
+                     "with its own definition, leaves {:.2g} of its rms){}",
+                     factor_name, factor_name, candidates[0].factor, own_residual,
+                     candidates[0].factor * lambda < 0 ? " — sign flipped?" : "");
+}
+
 // Each derived field against its definition applied to the height field (conventions
 // §Derived fields). Rounding bound: the stored height's rounding, white with variance ≤ u²
 // mean(h²), pushed through the field's multiplier, plus the field's own rounding; 10× that.
@@ -1237,12 +1640,10 @@ Results check_derived(const Analysis& a, OceanCheckReport& report) {
     const bool ok = error <= bound;
     std::string diagnosis;
     if (!ok) {
-      diagnosis = " — inconsistent with the height field";
-      if (field == Field::disp_x || field == Field::disp_y) {
-        diagnosis += error > 1.5 ? " (sign flipped? conventions: D ↔ +i k/|k| h̃, λ > 0 sharpens crests)"
-                                 : " (choppiness λ not the case's?)";
-      }
-      if (field == Field::jacobian) diagnosis += " (J built without λ, or from other displacements)";
+      diagnosis = field == Field::jacobian
+                      ? " — inconsistent with the height field (J built without λ, or from other "
+                        "displacements)"
+                      : " — " + explain_derived(a, field, bound);
     }
     out.push_back(bounded(fmt::format("derived.{}", reference::field_name(field)), a.subject(), error,
                           bound, fmt::format("rel rms error ≤ {:.1e} (rounding)", bound),
@@ -1258,8 +1659,8 @@ const std::vector<std::pair<std::string, CheckFunction>>& registry() {
       {"hermitian", check_hermitian},   {"parseval", check_parseval},
       {"energy", check_energy},         {"spectrum", check_spectrum},
       {"moments", check_moments},       {"dispersion", check_dispersion},
-      {"direction", check_direction},   {"statistics", check_statistics},
-      {"derived", check_derived}};
+      {"direction", check_direction},   {"randomness", check_randomness},
+      {"statistics", check_statistics}, {"derived", check_derived}};
   return checks;
 }
 

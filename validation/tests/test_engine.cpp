@@ -27,7 +27,7 @@ struct BugName {
   EngineBug bug;
   const char* name;
 };
-constexpr std::array<BugName, 18> kBugNames = {{
+constexpr std::array<BugName, 23> kBugNames = {{
     {EngineBug::none, "none"},
     {EngineBug::energy_doubled, "energy_doubled"},
     {EngineBug::independent_minus_k_real_part, "independent_minus_k_real_part"},
@@ -46,6 +46,11 @@ constexpr std::array<BugName, 18> kBugNames = {{
     {EngineBug::band_counted_twice, "band_counted_twice"},
     {EngineBug::standing_waves, "standing_waves"},
     {EngineBug::time_drift, "time_drift"},
+    {EngineBug::transposed_height, "transposed_height"},
+    {EngineBug::swapped_displacements, "swapped_displacements"},
+    {EngineBug::half_bin_offset_lattice, "half_bin_offset_lattice"},
+    {EngineBug::hash_collisions, "hash_collisions"},
+    {EngineBug::heave, "heave"},
 }};
 
 bool is_jonswap_family(const OceanCase& c) {
@@ -96,6 +101,13 @@ class Engine {
   cplx amplitude(int n, int m, double t) const {
     const reference::Sampling& g = sampling_;
     if (!carries_energy(n, m)) return 0.0;
+    if (bug_ == EngineBug::half_bin_offset_lattice) {
+      const auto [kx, ky] = offset_wave_vector(n, m);
+      const double w = omega(std::hypot(kx, ky));
+      // The "−k" partner one bin off, and no conjugate.
+      return h0_[index(n, m)] * std::exp(cplx(0.0, -w * t)) +
+             h0_[index(-n - 1, -m - 1)] * std::exp(cplx(0.0, w * t));
+    }
     const double w = omega(std::hypot(n * g.dkx(), m * g.dky()));
     const cplx plus = h0_[index(n, m)];
     const cplx minus =
@@ -117,6 +129,14 @@ class Engine {
       if (span > 0) value *= 1.0 + 0.2 * (t - c_.t0) / span;
     }
     return value;
+  }
+
+  // The wave vector bin (n, m) stands for: the grid's, or the half-bin-offset plugin's
+  // ((2n + 1) Δkx, (2m + 1) Δky).
+  std::pair<double, double> offset_wave_vector(int n, int m) const {
+    const reference::Sampling& g = sampling_;
+    if (bug_ == EngineBug::half_bin_offset_lattice) return {(2 * n + 1) * g.dkx(), (2 * m + 1) * g.dky()};
+    return {n * g.dkx(), m * g.dky()};
   }
 
  private:
@@ -147,7 +167,7 @@ class Engine {
   cplx initial_amplitude(int n, int m, std::uint32_t stream) const {
     const reference::Sampling& g = sampling_;
     if (!carries_energy(n, m)) return 0.0;
-    const double kx = n * g.dkx(), ky = m * g.dky();
+    const auto [kx, ky] = offset_wave_vector(n, m);
     const double dk2 = bug_ == EngineBug::amplitude_without_dk ? 1.0 : g.dkx() * g.dky();
     double scale = std::sqrt(psi(kx, ky) * dk2 / 2.0) / std::numbers::sqrt2;
     if (bug_ == EngineBug::energy_doubled) scale *= std::numbers::sqrt2;
@@ -196,6 +216,13 @@ class Engine {
     if (bug_ == EngineBug::same_pair_for_minus_k && !validation::in_half_plane(n, m)) {
       n = -n;
       m = -m;
+    }
+    if (bug_ == EngineBug::hash_collisions) {
+      std::uint32_t x = std::uint32_t(n) * 73856093u ^ std::uint32_t(m) * 19349663u;
+      x ^= x >> 15;
+      x *= 0x2c1b3c6du;
+      x ^= x >> 12;
+      return reference::wave_noise(c_.seed, int(x & 0xffffu), 0, stream);  // 2¹⁶ buckets
     }
     if (bug_ == EngineBug::uniform_noise) {
       const auto [u1, u2] = reference::wave_uniforms(c_.seed, n, m, stream);
@@ -258,7 +285,8 @@ reference::FieldFrame render_frame(const Engine& engine, double t, bool keep_ima
   for (std::size_t at = 0; at < count; ++at) {
     if (!g.carries_energy(at)) continue;  // k = 0 and Nyquist: 0 in every field
     const auto [n, m] = g.wave_index(at);
-    const double kx = n * g.dkx(), ky = m * g.dky(), k = std::hypot(kx, ky);
+    const auto [kx, ky] = engine.offset_wave_vector(n, m);
+    const double k = std::hypot(kx, ky);
     const cplx h = engine.amplitude(n, m, t);
     spectra[kH][at] = h;
     spectra[kSx][at] = kI * kx * h;
@@ -268,6 +296,18 @@ reference::FieldFrame render_frame(const Engine& engine, double t, bool keep_ima
     spectra[kDxx][at] = d_sign * (-kx * kx / k) * h;
     spectra[kDyy][at] = d_sign * (-ky * ky / k) * h;
     spectra[kDxy][at] = d_sign * (-kx * ky / k) * h;
+  }
+
+  if (bug == EngineBug::heave) {
+    // The mean level and the mean displacement move together: 0.8 √(2 m0) cos(2π t / 8 s).
+    double m0 = 0;
+    for (std::size_t at = 0; at < count; ++at) {
+      if (g.carries_energy(at)) m0 += std::norm(engine.amplitude(g.wave_index(at)[0], g.wave_index(at)[1], 0.0));
+    }
+    const double level = 0.8 * std::sqrt(2 * m0) * std::cos(2 * std::numbers::pi * t / 8.0);
+    spectra[kH][0] = level;
+    spectra[kDx][0] = level / c.choppiness;  // stored λD: the sway equals the heave
+    spectra[kDy][0] = level / c.choppiness;
   }
 
   std::array<ComplexField, kParts> parts;
@@ -308,6 +348,18 @@ reference::FieldFrame render_frame(const Engine& engine, double t, bool keep_ima
   }
   frame.fields[Field::jacobian] = std::move(jacobian);
 
+  if (bug == EngineBug::swapped_displacements) {
+    std::swap(frame.fields[Field::disp_x], frame.fields[Field::disp_y]);
+  }
+  if (bug == EngineBug::transposed_height) {
+    const Grid& grid = c.grid;  // square (engine_bug_applies)
+    auto& h = frame.fields[Field::height];
+    std::vector<double> transposed(h.size());
+    for (int j = 0; j < grid.ny; ++j) {
+      for (int i = 0; i < grid.nx; ++i) transposed[std::size_t(i) * grid.nx + j] = h[std::size_t(j) * grid.nx + i];
+    }
+    h = std::move(transposed);
+  }
   if (keep_imaginary) {
     frame.imaginary[Field::height] = parts[kH].im;
     frame.imaginary[Field::slope_x] = parts[kSx].im;
@@ -357,6 +409,14 @@ std::vector<EngineBug> all_engine_bugs() {
 bool engine_bug_applies(EngineBug bug, const OceanCase& ocean_case) {
   // The checkerboard (−1)^(i+j) is a fix-up of grid indices; a lattice has none.
   if (bug == EngineBug::checkerboard_sign) return !ocean_case.is_lattice();
+  if (bug == EngineBug::transposed_height) {
+    return !ocean_case.is_lattice() && ocean_case.grid.nx == ocean_case.grid.ny &&
+           ocean_case.grid.lx == ocean_case.grid.ly;
+  }
+  if (bug == EngineBug::half_bin_offset_lattice || bug == EngineBug::hash_collisions ||
+      bug == EngineBug::heave) {
+    return !ocean_case.is_lattice();
+  }
   if (bug == EngineBug::sigma_wrong) return is_jonswap_family(ocean_case);
   if (bug == EngineBug::spreading_not_normalized) return !ocean_case.spreading.model.empty();
   return true;

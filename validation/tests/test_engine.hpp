@@ -78,6 +78,24 @@ enum class EngineBug {
   standing_waves,
   // Amplitudes × (1 + 0.2 (t − t0)/(frames·dt)) (× 1 when frames·dt = 0): Hs grows over frames.
   time_drift,
+  // Issue 16's engines. The FFT input written x-major and read y-major: the height field is
+  // transposed (kx along rows), the displacement and slope channels are not. Square grids only.
+  transposed_height,
+  // The displacement channels swapped: disp_x holds λDy and disp_y holds λDx.
+  swapped_displacements,
+  // A plugin core's lattice: bin (n, m) evaluates Ψ, ω and the derived multipliers at
+  // K' = ((2n + 1) Δkx, (2m + 1) Δky) and pairs with bin (−n − 1, −m − 1) without the conjugate:
+  // h̃(k, t) = h̃0'(k) e^(−iω't) + h̃0'(−k − 1) e^(+iω't); the real part of the complex inverse is
+  // kept, so each output bin holds the frequencies ω(|2K ± Δk|).
+  half_bin_offset_lattice,
+  // Each wave vector seeded from a 16-bit hash of its index: (ξ1, ξ2) = wave_noise(seed, h, 0)
+  // with h a mixed hash of (n, m) in 2¹⁶ buckets: on the catalogue's 128² grid 46 % of the wave
+  // vectors draw the same pair as another one (the gate's count). Otherwise right.
+  hash_collisions,
+  // The k = 0 coefficient moves: the mean level rises and falls as 0.8·√(2 m0) cos(2π t/8 s)
+  // (m0 the waves' mean h² at t = 0; 0.64 m0 of variance over a period, about 39 % of the
+  // total) and the displacements sway by the same amount along x and y. Otherwise right.
+  heave,
 };
 
 std::string to_string(EngineBug bug);                       // "energy_doubled", …
