@@ -2,7 +2,7 @@
 // The gate: judge another engine's frames against its case file, with one family-wise
 // false-alarm rate shared by all statistical checks (docs/gate.md).
 //
-// The statistical checks that run (energy, spectrum, moments, direction, statistics — those
+// The statistical checks that run (energy, spectrum, moments, direction, randomness, statistics — those
 // the given fields and frame count allow) share α by Bonferroni: each runs at α / (their
 // number), so a right engine fails the gate with probability ≤ α. Exact checks (Hermitian,
 // Parseval, dispersion, derived fields) are judged against rounding bounds.

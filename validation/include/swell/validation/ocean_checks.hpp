@@ -18,6 +18,8 @@
 //               energy fraction; ω measured per wave vector against ω(k)
 //   direction   energy travelling along +k against −k: mean direction and spread against D;
 //               waves at k and −k independent (travelling, not standing)
+//   randomness  the recovered initial amplitudes, normalized, do not repeat across distinct
+//               wave vectors beyond chance (reused random numbers)
 //   statistics  skewness and kurtosis of heights; Gaussian amplitudes (Anderson–Darling);
 //               Hs steady across frames
 //   derived     slopes, displacements and Jacobian consistent with the height field
