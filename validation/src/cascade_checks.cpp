@@ -16,6 +16,7 @@
 #include "swell/reference/moments.hpp"
 #include "swell/validation/periodogram.hpp"
 #include "swell/validation/statistics.hpp"
+#include "swell/validation/wave_fit.hpp"
 
 namespace swell::validation {
 namespace {
@@ -221,31 +222,15 @@ std::vector<std::vector<Complex>> frame_spectra(const reference::FrameSequence& 
   return out;
 }
 
-// Least squares of ĥ(k, t_f) = a e^(−iωt_f) + b e^(+iωt_f) over the frames; false when the
-// two columns are nearly parallel (2ω Δt ≡ 0 mod 2π for every pair of frames).
-bool fit_two_waves(const std::vector<std::vector<Complex>>& spectra, const std::vector<double>& t,
-                   std::size_t e, double omega, Complex& a, Complex& b, double* residual) {
-  const double count = double(t.size());
-  Complex s2 = 0, ey = 0, eby = 0;
-  for (std::size_t f = 0; f < t.size(); ++f) {
-    const Complex e_f = std::polar(1.0, -omega * t[f]);
-    s2 += e_f * e_f;
-    ey += std::conj(e_f) * spectra[f][e];
-    eby += e_f * spectra[f][e];
-  }
-  // Normal equations [[F, conj(s2)], [s2, F]] [a, b] = [ey, eby].
-  const double det = count * count - std::norm(s2);
-  if (det < 1e-6 * count * count) return false;
-  a = (count * ey - std::conj(s2) * eby) / det;
-  b = (count * eby - s2 * ey) / det;
-  if (residual) {
-    double r = 0;
-    for (std::size_t f = 0; f < t.size(); ++f) {
-      const Complex e_f = std::polar(1.0, -omega * t[f]);
-      r += std::norm(spectra[f][e] - a * e_f - b * std::conj(e_f));
-    }
-    *residual = r;
-  }
+// The two-wave fit (wave_fit.hpp) of entry e over the frames' spectra; `residual` may be null.
+bool fit_entry(const std::vector<std::vector<Complex>>& spectra, const std::vector<double>& t,
+               std::size_t e, double omega, Complex& a, Complex& b, double* residual) {
+  thread_local std::vector<Complex> y;
+  y.resize(spectra.size());
+  for (std::size_t f = 0; f < spectra.size(); ++f) y[f] = spectra[f][e];
+  double left = 0;
+  if (!fit_two_waves(omega, t, y, a, b, left)) return false;
+  if (residual) *residual = left;
   return true;
 }
 
@@ -294,7 +279,7 @@ RecoveredAmplitudes recover(const OceanCase& ocean, const std::vector<std::vecto
     const int n = Grid::signed_index(int(e % g.nx), g.nx), m = Grid::signed_index(int(e / g.nx), g.ny);
     const double omega = ocean.omega(std::hypot(n * g.dkx(), m * g.dky()));
     Complex a, b;
-    if (fit_two_waves(spectra, t, e, omega, a, b, nullptr)) {
+    if (fit_entry(spectra, t, e, omega, a, b, nullptr)) {
       out.a[e] = a;
       out.valid[e] = 1;
     }
@@ -649,7 +634,7 @@ CheckResult patch_check(const std::vector<Analysis>& cascades) {
         Complex a, b;
         double r = 0;
         for (const auto& spectrum : spectra) total += std::norm(spectrum[e]);
-        if (fit_two_waves(spectra, t, e, omega, a, b, &r)) {
+        if (fit_entry(spectra, t, e, omega, a, b, &r)) {
           left += r;
         } else {
           for (const auto& spectrum : spectra) left += std::norm(spectrum[e]);

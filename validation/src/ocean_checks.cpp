@@ -1,4 +1,5 @@
 #include "swell/validation/ocean_checks.hpp"
+#include "swell/validation/wave_fit.hpp"
 
 #include <fmt/format.h>
 
@@ -72,35 +73,6 @@ struct WaveFit {
   Complex a, b;
   double energy = 0, residual = 0;  // Σf |h̃|², Σf |h̃ − fit|²
 };
-
-// Least squares of a e^(−iωt) + b e^(+iωt) to samples y_f at times t_f. Returns false when
-// the two columns are nearly parallel (2ω Δt ≈ 0 mod 2π), so a and b are not identifiable.
-bool fit_two_waves(double omega, const std::vector<double>& times, const std::vector<Complex>& y,
-                   Complex& a, Complex& b, double& residual) {
-  const double frames = double(times.size());
-  // e^(−iωt_f) once per frame, for the normal equations and the residual (per thread: the
-  // gate runs checks concurrently).
-  thread_local std::vector<Complex> phases;
-  phases.resize(times.size());
-  Complex s = 0, r1 = 0, r2 = 0;
-  for (std::size_t f = 0; f < times.size(); ++f) {
-    const Complex e = phases[f] = std::polar(1.0, -reference::reduced_phase(omega, times[f]));
-    s += std::conj(e) * std::conj(e);
-    r1 += std::conj(e) * y[f];
-    r2 += e * y[f];
-  }
-  // Normal equations [[F, S], [S*, F]] (a, b) = (r1, r2); eigenvalues F ± |S|.
-  if (frames - std::abs(s) < 0.05 * frames) return false;
-  const double det = frames * frames - std::norm(s);
-  a = (frames * r1 - s * r2) / det;
-  b = (frames * r2 - std::conj(s) * r1) / det;
-  residual = 0;
-  for (std::size_t f = 0; f < times.size(); ++f) {
-    const Complex e = phases[f];
-    residual += std::norm(y[f] - a * e - b * std::conj(e));
-  }
-  return true;
-}
 
 // Integer frames with a coarse quantization step (8-bit PNG, or 16-bit over a range far wider
 // than the values) come here, from the gate and from swell synth alike.
@@ -1723,6 +1695,33 @@ OceanCheckReport run_ocean_checks(const OceanCase& ocean_case, const FrameSequen
     report.results.insert(report.results.begin(), scale);
   }
   return report;
+}
+
+bool fit_two_waves(double omega, const std::vector<double>& times, const std::vector<Complex>& y,
+                   Complex& a, Complex& b, double& residual) {
+  const double frames = double(times.size());
+  // e^(−iωt_f) once per frame, for the normal equations and the residual (per thread: the
+  // gate runs checks concurrently).
+  thread_local std::vector<Complex> phases;
+  phases.resize(times.size());
+  Complex s = 0, r1 = 0, r2 = 0;
+  for (std::size_t f = 0; f < times.size(); ++f) {
+    const Complex e = phases[f] = std::polar(1.0, -reference::reduced_phase(omega, times[f]));
+    s += std::conj(e) * std::conj(e);
+    r1 += std::conj(e) * y[f];
+    r2 += e * y[f];
+  }
+  // Normal equations [[F, S], [S*, F]] (a, b) = (r1, r2); eigenvalues F ± |S|.
+  if (frames - std::abs(s) < 0.05 * frames) return false;
+  const double det = frames * frames - std::norm(s);
+  a = (frames * r1 - s * r2) / det;
+  b = (frames * r2 - std::conj(s) * r1) / det;
+  residual = 0;
+  for (std::size_t f = 0; f < times.size(); ++f) {
+    const Complex e = phases[f];
+    residual += std::norm(y[f] - a * e - b * std::conj(e));
+  }
+  return true;
 }
 
 }  // namespace swell::validation

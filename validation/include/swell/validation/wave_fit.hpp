@@ -1,0 +1,19 @@
+#pragma once
+// The per-wave-vector fit every time-resolved check shares (dispersion, direction, randomness,
+// the cascade checks): a frame's spectrum at one k over the frame times is, on a right surface,
+// ĥ(k, t) = a e^(−iωt) + b e^(+iωt) with a = h̃0(k) and b = conj h̃0(−k) (conventions
+// §Amplitudes).
+#include <complex>
+#include <vector>
+
+namespace swell::validation {
+
+// Least squares of a e^(−iωt) + b e^(+iωt) to samples y_f at times t_f (phases reduced exactly,
+// reference/phase.hpp). Returns false when the two columns are nearly parallel (2ω Δt ≈ 0 mod
+// 2π: the normal matrix's smaller eigenvalue F − |S| below 5 % of F), so a and b are not
+// identifiable; `residual` is Σ_f |y_f − fit_f|².
+bool fit_two_waves(double omega, const std::vector<double>& times,
+                   const std::vector<std::complex<double>>& y, std::complex<double>& a,
+                   std::complex<double>& b, double& residual);
+
+}  // namespace swell::validation
