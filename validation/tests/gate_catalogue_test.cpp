@@ -194,6 +194,34 @@ TEST(Diagnosis, NamesAnUndeclaredLoopPeriod) {
   EXPECT_NE(reason.find("does not declare"), std::string::npos) << reason;
 }
 
+// Another choppiness is named with the least-squares λ — only because it explains the field —
+// and is not called a flipped sign; a field no λ explains says so with the best λ it found.
+TEST(Diagnosis, NamesTheChoppinessTheDisplacementsCarry) {
+  OceanCase engine = catalogue_case();
+  engine.choppiness = 1.2;
+  const auto report = swell::validation::run_gate(as_case_file(catalogue_case()),
+                                                  swell::test::render_surface(engine), GateOptions{});
+  bool found = false;
+  for (const auto& r : report.results) {
+    if (r.check != "derived.disp_x") continue;
+    found = true;
+    EXPECT_FALSE(r.passed);
+    EXPECT_NE(r.reason.find("λ is 1.2, not the case's 0.8"), std::string::npos) << r.reason;
+    EXPECT_EQ(r.reason.find("sign flipped"), std::string::npos) << r.reason;
+  }
+  EXPECT_TRUE(found);
+  // Displacements of a half-bin-offset lattice: positive best λ, not explained, no "sign".
+  const auto offset = swell::validation::run_gate(
+      as_case_file(catalogue_case()),
+      swell::test::render_surface(catalogue_case(), EngineBug::half_bin_offset_lattice), GateOptions{});
+  for (const auto& r : offset.results) {
+    if (r.check != "derived.disp_x") continue;
+    EXPECT_FALSE(r.passed);
+    EXPECT_NE(r.reason.find("no λ explains it"), std::string::npos) << r.reason;
+    EXPECT_EQ(r.reason.find("sign flipped"), std::string::npos) << r.reason;
+  }
+}
+
 // The right engine of both catalogue seas passes the gate.
 TEST(Catalogue, TheRightEnginePasses) {
   for (const OceanCase& c : {catalogue_case(), shallow_case()}) {
