@@ -5,9 +5,18 @@
 // threaded backend's CPU time adds its threads'. Planning (FFTW_MEASURE: about 1 s at 2048²; a
 // vulkan plan compiles its pipelines) is done before timing and reported as plan_seconds.
 // Counters: GFLOP/s by benchFFT's convention (5 N² log2 N² per complex transform, half for
-// c2r) and bytes/s (input + output); for vulkan, gearshifft's phases: device_seconds (the
+// c2r) and bytes/s (input + output); floor_fraction, the roofline: the time of the copy
+// benchmark below for the same arrays (measured in the same process right after, the best of
+// 5) over the transform's time — 1 would be a transform as fast as moving its data twice; for
+// vulkan, gearshifft's phases: device_seconds (the
 // transform's timestamps on the device, mean per iteration) and upload_seconds and
 // download_seconds (host ↔ device copies of the input and output, mean of 3 host executions).
+//
+//
+// The roofline, fft2d/<kind>/copy/<precision>/<N>: the bytes a 2-D transform's two passes (one
+// per axis) move, without arithmetic — the input copied to the output, then the output copied
+// back to the input (memcpy, one thread): read and write of the array once per axis. Its
+// GFLOP/s is not a flop rate; it is registered whatever SWELL_BENCH_IMPLS says.
 //
 //   build/bench/swell_fft_bench --benchmark_format=json --benchmark_out=fft.json
 //   SWELL_BENCH_IMPLS=radix2,fftw build/bench/swell_fft_bench --benchmark_filter=c2c/.*/fp32
@@ -17,6 +26,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <algorithm>
 #include <fstream>
 #include <random>
 #include <string>
@@ -48,6 +59,33 @@ std::string cpu_flags() {
     break;
   }
   return found;
+}
+
+// The two passes of the roofline on arrays of the transform's input and output sizes.
+void copy_passes(void* in, void* out, std::size_t in_bytes, std::size_t out_bytes) {
+  const std::size_t bytes = std::min(in_bytes, out_bytes);
+  std::memcpy(out, in, bytes);
+  std::memcpy(in, out, bytes);
+  benchmark::ClobberMemory();
+}
+
+// Seconds of the roofline's two passes for `spec`'s arrays: the best of 5.
+double copy_seconds(const TransformSpec& spec) {
+  std::vector<unsigned char> in(spec.input_bytes(), 1), out(spec.output_bytes(), 2);
+  double best = 1e300;
+  for (int repeat = 0; repeat < 5; ++repeat) {
+    const auto start = std::chrono::steady_clock::now();
+    copy_passes(in.data(), out.data(), in.size(), out.size());
+    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  return best;
+}
+
+void run_copy(benchmark::State& state, TransformSpec spec) {
+  std::vector<unsigned char> in(spec.input_bytes(), 1), out(spec.output_bytes(), 2);
+  for (auto _ : state) copy_passes(in.data(), out.data(), in.size(), out.size());
+  state.counters["floor_fraction"] = 1.0;
+  state.SetBytesProcessed(state.iterations() * int64_t(spec.input_bytes() + spec.output_bytes()));
 }
 
 void run(benchmark::State& state, const std::string& impl, TransformSpec spec) {
@@ -96,10 +134,15 @@ void run(benchmark::State& state, const std::string& impl, TransformSpec spec) {
   } else
 #endif
   {
+    const auto start = std::chrono::steady_clock::now();
     for (auto _ : state) {
       plan->execute(*in, *out);
       benchmark::ClobberMemory();
     }
+    const double per_transform =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() /
+        double(std::max<std::int64_t>(1, state.iterations()));
+    state.counters["floor_fraction"] = copy_seconds(spec) / per_transform;
   }
   const double n2 = double(spec.nx) * spec.ny;
   const double flops = (spec.kind == Kind::c2c ? 5.0 : 2.5) * n2 * std::log2(n2);
@@ -110,6 +153,7 @@ void run(benchmark::State& state, const std::string& impl, TransformSpec spec) {
 
 void register_all() {
   for (const auto& impl : implementations()) {
+    if (impl == "copy") continue;  // the roofline, registered below
     for (Kind kind : {Kind::c2c, Kind::c2r}) {
       for (Precision precision : {Precision::f32, Precision::f64}) {
         for (int n = impl.rfind("vulkan", 0) == 0 ? 16 : 64; n <= 4096; n *= 2) {
@@ -128,6 +172,23 @@ void register_all() {
               // than the same ones later (lavapipe's threads and the CPU's clocks waking up).
               ->MinWarmUpTime(0.05);
         }
+      }
+    }
+  }
+  for (Kind kind : {Kind::c2c, Kind::c2r}) {
+    for (Precision precision : {Precision::f32, Precision::f64}) {
+      for (int n = 64; n <= 4096; n *= 2) {
+        TransformSpec spec;
+        spec.nx = spec.ny = n;
+        spec.kind = kind;
+        spec.direction = Direction::inverse;
+        spec.precision = precision;
+        const std::string name = "fft2d/" + to_string(kind) + "/copy/" + to_string(precision) +
+                                 "/" + std::to_string(n);
+        benchmark::RegisterBenchmark(name.c_str(), run_copy, spec)
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime()
+            ->MinWarmUpTime(0.05);
       }
     }
   }

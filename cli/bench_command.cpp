@@ -158,10 +158,11 @@ bool selected(const reports::BenchmarkName& name, const BenchOptions& o, long si
 std::map<std::string, std::string> child_environment(const BenchOptions& o) {
   std::map<std::string, std::string> env;
   if (!o.impls.empty()) {
-    // vkfft is fft_bench's anchor, not a backend: the suite registers it on its own.
+    // vkfft (fft_bench's anchor) and copy (its roofline) are not backends: the suite registers
+    // them on its own.
     std::string list;
     for (const auto& impl : split_list(o.impls)) {
-      if (impl != "vkfft") list += (list.empty() ? "" : ",") + impl;
+      if (impl != "vkfft" && impl != "copy") list += (list.empty() ? "" : ",") + impl;
     }
     if (!list.empty()) env["SWELL_BENCH_IMPLS"] = list;
   }
@@ -230,7 +231,9 @@ nlohmann::json measure_accuracy(const Selection& fft, Progress& progress) {
   std::set<std::tuple<std::string, std::string, std::string, long>> done;
   for (const auto& name : fft.names) {
     const auto n = reports::parse_benchmark_name(name);
-    if (n.impl == "vkfft" || !done.insert({n.impl, n.precision, n.kind, n.size}).second) continue;
+    if (n.impl == "vkfft" || n.impl == "copy" || !done.insert({n.impl, n.precision, n.kind, n.size}).second) {
+      continue;
+    }
     nlohmann::json row = {{"impl", n.impl}, {"precision", n.precision}, {"kind", n.kind}, {"n", n.size}};
     try {
       const auto backend = impls::make_backend(n.impl);
@@ -311,7 +314,7 @@ int run_bench(const BenchOptions& o) {
     if (p != "fp32" && p != "fp64") throw InvalidInput("--precision '" + p + "': valid are fp32, fp64");
   }
   for (const auto& impl : split_list(o.impls)) {
-    if (impl == "vkfft") continue;
+    if (impl == "vkfft" || impl == "copy") continue;
     try {
       impls::make_backend(impl);
     } catch (const impls::UnsupportedTransform&) {
@@ -419,7 +422,7 @@ int run_bench(const BenchOptions& o) {
 Action add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   app.add_option("--suite", o->suite, "fft | frame | lattice | gate | all")->capture_default_str();
-  app.add_option("--impl", o->impls, "backends, comma separated (fftw,radix2,…; vkfft: fft's anchor); default each suite's");
+  app.add_option("--impl", o->impls, "backends, comma separated (fftw,radix2,…; vkfft: fft's anchor; copy: the roofline, a copy of a 2-D transform's bytes); default each suite's");
   app.add_option("--sizes", o->sizes, "LOW:HIGH or N: n of n × n transforms and frames, √N of lattices, the gate's N");
   app.add_option("--precision", o->precisions, "fp32,fp64 (default both)");
   app.add_option("--repetitions", o->repetitions, "repetitions of each benchmark (9: what compare.py's U test trusts)")->capture_default_str();
