@@ -498,7 +498,7 @@ double dispersion_misfit(const sr::FrameSequence& s, OmegaOf omega_of, int* used
 
 TEST(TestEngine, BugNamesRoundTrip) {
   const auto bugs = swell::test::all_engine_bugs();
-  EXPECT_EQ(bugs.size(), 17u);
+  EXPECT_EQ(bugs.size(), 22u);
   for (EngineBug bug : bugs) {
     EXPECT_NE(bug, EngineBug::none);
     EXPECT_EQ(swell::test::engine_bug_from_string(swell::test::to_string(bug)), bug);
