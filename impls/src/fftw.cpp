@@ -328,13 +328,25 @@ class FftwBackend final : public Backend {
   std::unique_ptr<Plan> plan(const TransformSpec& spec) const override {
     validate(spec);
     const std::string planner = options_.planner.empty() ? "measure" : options_.planner;
+    const int threads = threads_for(spec);
     switch (spec.precision) {
-      case Precision::f32: return std::make_unique<FftwPlan<float>>(spec, planner, options_.threads);
-      case Precision::f64: return std::make_unique<FftwPlan<double>>(spec, planner, options_.threads);
+      case Precision::f32: return std::make_unique<FftwPlan<float>>(spec, planner, threads);
+      case Precision::f64: return std::make_unique<FftwPlan<double>>(spec, planner, threads);
       case Precision::f80:
-        return std::make_unique<FftwPlan<long double>>(spec, planner, options_.threads);
+        return std::make_unique<FftwPlan<long double>>(spec, planner, threads);
     }
     return nullptr;
+  }
+
+  // Threads that pay (issue 17): FFTW's threads cost about 0.1 ms a call to wake and join, so
+  // below 2¹⁸ points (512²) two threads were slower than one — measured on the 2-core
+  // reference VM, fp32 c2c inverse, medians of 5: 64² 0.108 against 0.005 ms, 128² 0.127
+  // against 0.029, 256² 0.204 against 0.159; from 512² they pay (0.54 against 0.87 ms, 1024²
+  // 2.78 against 6.88). Smaller transforms are planned with one thread.
+  static constexpr double kThreadedFromPoints = 512.0 * 512.0;
+  int threads_for(const TransformSpec& spec) const {
+    const double points = double(spec.nx) * double(spec.rank() == 1 ? 1 : spec.ny) * spec.howmany;
+    return options_.threads > 1 && points < kThreadedFromPoints ? 1 : options_.threads;
   }
 
  private:
