@@ -256,6 +256,19 @@ Analysis analyse(const CascadeView& view) {
   return a;
 }
 
+// The initial amplitudes h̃0(k) of a surface recovered from its frames' heights (grid order):
+// with frames at two or more times, the least-squares a of ĥ(k, t) = a e^(−iωt) + b e^(iωt) at
+// the case's ω(k) (a = h̃0(k), b = conj h̃0(−k)); with one frame at t = 0, ĥ(k, 0) itself
+// (h̃0(k) + conj h̃0(−k): `mixed`). `valid` is false where the fit is degenerate
+// (2ω dt ≡ 0 mod 2π) or k carries no energy on the grid; `usable` false when neither applies
+// (one frame at t ≠ 0), with the reason.
+struct RecoveredAmplitudes {
+  std::vector<std::complex<double>> a;
+  std::vector<char> valid;
+  bool mixed = false;
+  bool usable = true;
+  std::string reason;
+};
 RecoveredAmplitudes recover(const OceanCase& ocean, const std::vector<std::vector<Complex>>& spectra,
                             const std::vector<double>& t) {
   RecoveredAmplitudes out;
@@ -296,14 +309,6 @@ CheckResult patch_check(const std::vector<Analysis>& cascades);
 CheckResult nested_check(const std::vector<Analysis>& cascades);
 
 }  // namespace
-
-RecoveredAmplitudes recover_initial_amplitudes(const OceanCase& ocean,
-                                               const reference::FrameSequence& frames) {
-  std::vector<double> t;
-  for (const auto& frame : frames.frames) t.push_back(frame.time);
-  if (t.size() == 1 && t[0] != 0) return recover(ocean, {}, t);
-  return recover(ocean, frame_spectra(frames, ocean.grid), t);
-}
 
 std::vector<CheckResult> run_cascade_set_checks(const std::vector<CascadeView>& cascades,
                                                 const std::vector<reference::CascadeMember>& members,

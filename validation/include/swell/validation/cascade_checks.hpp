@@ -36,22 +36,6 @@ struct CascadeView {
   const reference::FrameSequence* frames = nullptr;
 };
 
-// The initial amplitudes h̃0(k) of a surface recovered from its frames' heights (grid order):
-// with frames at two or more times, the least-squares a of ĥ(k, t) = a e^(−iωt) + b e^(iωt) at
-// the case's ω(k) (a = h̃0(k), b = conj h̃0(−k)); with one frame at t = 0, ĥ(k, 0) itself
-// (h̃0(k) + conj h̃0(−k): `mixed`). `valid` is false where the fit is degenerate
-// (2ω dt ≡ 0 mod 2π) or k carries no energy on the grid; `usable` false when neither applies
-// (one frame at t ≠ 0), with the reason.
-struct RecoveredAmplitudes {
-  std::vector<std::complex<double>> a;
-  std::vector<char> valid;
-  bool mixed = false;
-  bool usable = true;
-  std::string reason;
-};
-RecoveredAmplitudes recover_initial_amplitudes(const reference::OceanCase& ocean,
-                                               const reference::FrameSequence& frames);
-
 struct CascadeSetOptions {
   reference::CascadeRelation relation = reference::CascadeRelation::additive;
   double alpha_per_check = 1e-3;  // each statistical check's false-alarm rate
