@@ -8,16 +8,18 @@
 // cos/sin; every butterfly is the plain radix-2 one, a ± w·b, with the table twiddle w.
 //
 // What makes it fast (a 2-D transform is mostly memory traffic, not arithmetic):
-//  * Two radix-2 stages per sweep over the scratch (stages h and 2h on 4 elements held in
-//    registers), which halves the loads and stores of the butterflies.
-//  * The first two stages (twiddles 1 and ∓i, no multiplications) are done while gathering
-//    the input, and the last log2 R stages (R = 4 … 16, every span ≥ 256) while scattering the
-//    output, so the scratch (up to 512 KB, in L2) is swept only for the stages in between.
-//  * Those middle stages run chunk by chunk on 256 elements (32 KB, fits L1); only for
-//    n > 4096 do a few stages sweep the whole scratch. The L2 ↔ L1 traffic, not arithmetic,
-//    is what limits the butterflies at n ≥ 1024.
-// Every butterfly is still the plain radix-2 one with the same table twiddle, so the result is
-// the same as stage-by-stage radix 2; fusing only keeps values in registers between stages.
+//  * Up to three radix-2 stages per sweep over the scratch (stages h, 2h, 4h on 8 elements
+//    held in registers), which cuts the loads and stores of the butterflies threefold; a
+//    512-bit store takes two cycles on AMD Zen 4, so stores, not flops, bound a sweep.
+//  * The first three stages (twiddles 1, ∓i and the eighth roots: two multiplications per
+//    eight points) are done while gathering the input, and the last log2 R stages (R = 4 … 16)
+//    while scattering the output, so the scratch (up to 512 KB, in L2) is swept only for the
+//    stages in between: once up to n = 1024, twice at 2048 and 4096.
+//  * Those middle stages run chunk by chunk on 128 elements (16 KB, in L1); from n = 4096 one
+//    stage sweeps the whole scratch.
+// Every butterfly is still the plain radix-2 one with the same table twiddle (the trivial ones
+// 1 and ∓i done exactly), so the arithmetic is stage-by-stage radix 2; fusing only keeps values
+// in registers between stages.
 //  * Gathering L rows is an L×L in-register transpose of full 64-byte loads (AVX-512), not
 //    scalar moves; gathering L columns is two loads and two permutes per row. The strided
 //    column accesses are software-prefetched a few rows ahead, since the hardware prefetchers
@@ -71,6 +73,7 @@ struct Axis {
   int n = 1;
   std::vector<int> bit_reversed;      // over log2 n bits (small sizes)
   std::vector<int> quarter_reversed;  // over log2 n − 2 bits, for q < n/4 (fused first pass)
+  std::vector<int> eighth_reversed;   // over log2 n − 3 bits, for q < n/8 (fused first pass)
   // Stage with butterfly span h uses w_j = e^(∓iπ j/h), j < h, stored at [h + j].
   std::vector<T> w_re, w_im_forward, w_im_inverse;
 
@@ -86,6 +89,10 @@ struct Axis {
     if (n >= 4) {
       quarter_reversed.resize(n / 4);
       for (int i = 0; i < n / 4; ++i) quarter_reversed[i] = reverse(i, bits - 2);
+    }
+    if (n >= 8) {
+      eighth_reversed.resize(n / 8);
+      for (int i = 0; i < n / 8; ++i) eighth_reversed[i] = reverse(i, bits - 3);
     }
     for (int h = 1; h < n; h <<= 1) {
       for (int j = 0; j < h; ++j) {
@@ -132,45 +139,48 @@ inline void butterfly_i(Cx<T>& a, Cx<T>& b, bool inverse) {
   a.im += ti;
 }
 
-// One radix-2 stage of span h on elements [begin, end).
-template <typename T>
-void stage(Cx<T>* __restrict x, int begin, int end, int h, const T* wr, const T* wi) {
-  for (int s = begin; s < end; s += 2 * h) {
-    for (int j = 0; j < h; ++j) {
-      Cx<T> a = x[s + j], b = x[s + j + h];
-      butterfly(a, b, wr[h + j], wi[h + j]);
-      x[s + j] = a;
-      x[s + j + h] = b;
-    }
-  }
-}
-
-// Radix-2 stages h and 2h on elements [begin, end) in one sweep: the four elements a group of
-// 4h touches at offset j stay in registers between the two stages.
-template <typename T>
-void stage_pair(Cx<T>* __restrict x, int begin, int end, int h, const T* wr, const T* wi) {
-  for (int s = begin; s < end; s += 4 * h) {
+// Radix-2 stages h, 2h, …, (R/2)·h on elements [begin, end) in one sweep (R = 2, 4, 8): the R
+// elements a group of R·h touches at offset j (j + r·h, r < R) are closed under those stages and
+// stay in registers between them. In the stage of span step·h, element r pairs with r + step and
+// sits at offset j + (r mod step)·h in its group of 2·step·h, which indexes the twiddle.
+template <typename T, int R>
+void stage_group(Cx<T>* __restrict x, int begin, int end, int h, const T* wr, const T* wi) {
+  for (int s = begin; s < end; s += R * h) {
     Cx<T>* p = x + s;
     for (int j = 0; j < h; ++j) {
-      Cx<T> a = p[j], b = p[j + h], c = p[j + 2 * h], d = p[j + 3 * h];
-      butterfly(a, b, wr[h + j], wi[h + j]);
-      butterfly(c, d, wr[h + j], wi[h + j]);
-      butterfly(a, c, wr[2 * h + j], wi[2 * h + j]);
-      butterfly(b, d, wr[3 * h + j], wi[3 * h + j]);  // W_2h[j + h]
-      p[j] = a;
-      p[j + h] = b;
-      p[j + 2 * h] = c;
-      p[j + 3 * h] = d;
+      Cx<T> e[R];
+#pragma GCC unroll 8
+      for (int r = 0; r < R; ++r) e[r] = p[j + r * h];
+#pragma GCC unroll 4
+      for (int step = 1; step < R; step *= 2) {
+#pragma GCC unroll 8
+        for (int r = 0; r < R; ++r) {
+          if (r & step) continue;
+          const int w = step * h + j + (r & (step - 1)) * h;
+          butterfly(e[r], e[r + step], wr[w], wi[w]);
+        }
+      }
+#pragma GCC unroll 8
+      for (int r = 0; r < R; ++r) p[j + r * h] = e[r];
     }
   }
 }
 
-// Stages first, 2·first, …, last (spans, powers of two) on [begin, end), two at a time.
+// Stages first, 2·first, …, last (spans, powers of two) on [begin, end), three at a time (two
+// and two when four are left, so no sweep does a single stage that a pair could share).
 template <typename T>
 void stages(Cx<T>* x, int begin, int end, int first, int last, const T* wr, const T* wi) {
+  int count = 0;
+  for (int h = first; h <= last; h *= 2) ++count;
   int h = first;
-  for (; 2 * h <= last; h *= 4) stage_pair(x, begin, end, h, wr, wi);
-  if (h <= last) stage(x, begin, end, h, wr, wi);
+  while (count > 0) {
+    const int fused = count == 4 ? 2 : std::min(count, 3);
+    if (fused == 3) stage_group<T, 8>(x, begin, end, h, wr, wi);
+    if (fused == 2) stage_group<T, 4>(x, begin, end, h, wr, wi);
+    if (fused == 1) stage_group<T, 2>(x, begin, end, h, wr, wi);
+    h <<= fused;
+    count -= fused;
+  }
 }
 
 // ------------------------------------------------------------------ gathers and scatters
@@ -415,8 +425,10 @@ Cx<T>* scratch(std::size_t count) {
   return buffer.data();
 }
 
-// Elements per chunk for the middle stages: 256 × 128 bytes = 32 KB, inside L1 (48 KB).
-constexpr int kChunk = 256;
+// Elements per chunk for the middle stages: 128 × 128 bytes = 16 KB, inside L1 with the
+// twiddles beside it on cores with 32 KB (AMD Zen 4) as well as 48 KB (Intel). 256 measured the
+// same within this machine's noise.
+constexpr int kChunk = 128;
 
 // The last log2 R stages, spans n/R … n/2, fused with the scatter. With q = n/R, the R
 // elements j + r·q (r < R) form a closed group under those stages, and they are exactly the
@@ -467,38 +479,72 @@ void transform_block(const IO& io, const Axis<T>& axis, bool inverse) {
     return;
   }
 
-  const int q = n / 4;
-  // Gather with stages 1 and 2. Scratch position 4p + r holds sample bitrev(4p + r), which
-  // is s + {0, n/2, n/4, 3n/4}[r] with s = bitrev over log2 n − 2 bits of p: the four quarters
-  // of the input at the same offset s make one group of four.
-  for (int k = 0; k < q; k += G) {
-    Cx<T> in[4][G];
-    for (int r = 0; r < 4; ++r) io.load(k + r * q, in[r]);
-    for (int t = 0; t < G; ++t) {
-      Cx<T> a = in[0][t], b = in[2][t], c = in[1][t], d = in[3][t];
-      butterfly_one(a, b);  // span 1, w = 1
-      butterfly_one(c, d);
-      butterfly_one(a, c);  // span 2, w = 1 and ∓i
-      butterfly_i(b, d, inverse);
-      Cx<T>* p = x + 4 * axis.quarter_reversed[k + t];
-      p[0] = a;
-      p[1] = b;
-      p[2] = c;
-      p[3] = d;
+  int first_middle = 4;  // span of the first stage the gather has not done
+  if (n / 8 < G) {
+    // Gather with stages 1 and 2. Scratch position 4p + r holds sample bitrev(4p + r), which
+    // is s + {0, n/2, n/4, 3n/4}[r] with s = bitrev over log2 n − 2 bits of p: the four
+    // quarters of the input at the same offset s make one group of four.
+    const int q = n / 4;
+    for (int k = 0; k < q; k += G) {
+      Cx<T> in[4][G];
+      for (int r = 0; r < 4; ++r) io.load(k + r * q, in[r]);
+      for (int t = 0; t < G; ++t) {
+        Cx<T> a = in[0][t], b = in[2][t], c = in[1][t], d = in[3][t];
+        butterfly_one(a, b);  // span 1, w = 1
+        butterfly_one(c, d);
+        butterfly_one(a, c);  // span 2, w = 1 and ∓i
+        butterfly_i(b, d, inverse);
+        Cx<T>* p = x + 4 * axis.quarter_reversed[k + t];
+        p[0] = a;
+        p[1] = b;
+        p[2] = c;
+        p[3] = d;
+      }
     }
+  } else {
+    // Gather with stages 1, 2 and 4: scratch position 8p + r holds sample bitrev(8p + r) =
+    // s + bitrev₃(r)·n/8 with s = bitrev over log2 n − 3 bits of p, so the eight eighths of the
+    // input at offset s make one group, and its three stages are an 8-point transform.
+    const int q = n / 8;
+    for (int k = 0; k < q; k += G) {
+      Cx<T> in[8][G];
+      for (int r = 0; r < 8; ++r) io.load(k + r * q, in[r]);
+      for (int t = 0; t < G; ++t) {
+        Cx<T> e[8] = {in[0][t], in[4][t], in[2][t], in[6][t], in[1][t], in[5][t], in[3][t], in[7][t]};
+        butterfly_one(e[0], e[1]);  // span 1, w = 1
+        butterfly_one(e[2], e[3]);
+        butterfly_one(e[4], e[5]);
+        butterfly_one(e[6], e[7]);
+        butterfly_one(e[0], e[2]);  // span 2, w = 1 and ∓i
+        butterfly_i(e[1], e[3], inverse);
+        butterfly_one(e[4], e[6]);
+        butterfly_i(e[5], e[7], inverse);
+        butterfly_one(e[0], e[4]);  // span 4, w = e^(∓iπj/4): 1, table, ∓i, table
+        butterfly(e[1], e[5], wr[5], wi[5]);
+        butterfly_i(e[2], e[6], inverse);
+        butterfly(e[3], e[7], wr[7], wi[7]);
+        Cx<T>* p = x + 8 * axis.eighth_reversed[k + t];
+#pragma GCC unroll 8
+        for (int r = 0; r < 8; ++r) p[r] = e[r];
+      }
+    }
+    first_middle = 8;
   }
 
-  // The last log2 R stages (spans n/R … n/2) go with the scatter, R = n/256 within 4 … 16, so
-  // that every stage before them has a span below 256 and runs chunk by chunk in L1.
-  const int groups = std::clamp(n / kChunk, 4, 16);
+  // The last log2 R stages (spans n/R … n/2) go with the scatter. R is the smallest of 4, 8, 16
+  // that leaves at most three stages between the gather and the scatter (one sweep over the
+  // scratch, by stage_group<8>); from n = 2048 more are left.
+  int groups = 4;
+  while (groups < 16 && n / (2 * groups) > 4 * first_middle) groups *= 2;
   const int last_middle = n / groups / 2;
-  // Middle stages, spans 4 … last_middle: those that fit a chunk while it sits in L1, then
-  // (only for n > 4096) the rest over the whole scratch.
-  int local_last = 2;
-  while (2 * local_last <= last_middle && 4 * local_last <= kChunk) local_last *= 2;
-  if (local_last >= 4) {
+  // Middle stages, spans first_middle … last_middle: those whose pairs lie within a chunk (span
+  // ≤ kChunk/2) chunk by chunk while it sits in L1, then (from n = 4096) the rest over the whole
+  // scratch.
+  int local_last = first_middle / 2;
+  while (2 * local_last <= last_middle && 2 * (2 * local_last) <= kChunk) local_last *= 2;
+  if (local_last >= first_middle) {
     const int chunk = std::min(n, kChunk);
-    for (int c = 0; c < n; c += chunk) stages(x, c, c + chunk, 4, local_last, wr, wi);
+    for (int c = 0; c < n; c += chunk) stages(x, c, c + chunk, first_middle, local_last, wr, wi);
   }
   if (2 * local_last <= last_middle) stages(x, 0, n, 2 * local_last, last_middle, wr, wi);
 
