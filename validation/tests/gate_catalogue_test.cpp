@@ -17,6 +17,7 @@
 #include "swell/validation/frame_io.hpp"
 #include "swell/validation/gate.hpp"
 #include "swell/validation/ocean_checks.hpp"
+#include "gate_cases.hpp"
 #include "test_engine.hpp"
 
 namespace {
@@ -28,37 +29,9 @@ using swell::validation::CaseFile;
 using swell::validation::GateOptions;
 using swell::validation::GateReport;
 
-// The catalogue's sea: JONSWAP (Hs 3 m, Tp 8 s, γ 3.3) with cos-2s s = 4 toward 30°, deep
-// water, 128² over 800 m (the peak at 8 Δk), 8 frames 0.5 s apart, λ = 0.8. s = 4 rather
-// than 10 because an unnormalized cos-2s multiplies the energy by 1/G(s): 1.72 at s = 4, which
-// one realization resolves, but only 1.11 at s = 10, which it cannot at α = 10⁻³.
-OceanCase catalogue_case() {
-  OceanCase c;
-  c.grid = Grid::create(128, 128, 800, 800);
-  c.spectrum = {"jonswap", {{"hs", 3.0}, {"tp", 8.0}, {"gamma", 3.3}}, {}};
-  c.spreading = {"cos2s", {{"s", 4.0}}, {}};
-  c.wind_dir_deg = 30;
-  c.choppiness = 0.8;
-  c.dt = 0.5;
-  c.frames = 8;
-  c.seed = 7;
-  return c;
-}
-
-// The same sea over 10 m of water (TMA), for the bug that ignores depth.
-OceanCase shallow_case() {
-  OceanCase c = catalogue_case();
-  c.spectrum.model = "tma";
-  c.spectrum.numbers["hs"] = 1.5;
-  c.depth = 10;
-  return c;
-}
-
-CaseFile as_case_file(const OceanCase& c) {
-  CaseFile file;
-  file.ocean = c;
-  return file;
-}
+using swell::test::as_case_file;
+using swell::test::catalogue_case;
+using swell::test::shallow_case;
 
 struct CatalogueEntry {
   EngineBug bug;
