@@ -245,18 +245,12 @@ GateFrames read_gate_frames(const CaseFile& case_file, const std::string& patter
 
 // ------------------------------------------------------------------ judging
 
-// The checks in groups that run concurrently, each group through run_ocean_checks (its own
-// analysis of the case: μ(k) and the first frame's spectrum, about 7 % of the work at 512²).
-// dispersion and direction share the per-wave fits over all frames; derived needs only the
-// end frames. Costliest first: at 512² × 64 frames the first group takes about as long as
-// the other two together, so two threads finish together.
-struct CheckGroup {
-  std::vector<std::string> checks;
-  bool ends_only = false;  // runs on the two end frames
-};
-
-const std::vector<CheckGroup>& check_groups() {
-  static const std::vector<CheckGroup> groups = {
+// The checks in groups that run concurrently on one analysis of the frames
+// (run_ocean_check_groups). dispersion and direction share the per-wave fits over all frames;
+// derived needs only the end frames. Costliest first: at 512² × 64 frames the first group
+// takes about as long as the other two together, so two threads finish together.
+const std::vector<OceanCheckGroup>& check_groups() {
+  static const std::vector<OceanCheckGroup> groups = {
       {{"hermitian", "parseval", "energy", "spectrum", "moments", "statistics"}, false},
       {{"dispersion", "direction", "randomness"}, false},
       {{"derived"}, true}};
@@ -311,31 +305,9 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
   report_progress(options, fmt::format("judging {} frame{} of {}×{}…", report.frames,
                                        report.frames == 1 ? "" : "s", report.nx, report.ny));
 
-  // Bad input (a grid that does not match, no height field) fails every group alike; the
-  // first group's error is thrown.
-  const auto& groups = check_groups();
-  std::vector<OceanCheckReport> parts(groups.size());
-  std::vector<std::exception_ptr> errors(groups.size());
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t g; (g = next++) < groups.size();) {
-      try {
-        parts[g] = run_ocean_checks(case_file.ocean, groups[g].ends_only ? ends : frames,
-                                    check_options, groups[g].checks);
-      } catch (...) {
-        errors[g] = std::current_exception();
-      }
-    }
-  };
-  {
-    std::vector<std::thread> pool;
-    for (int t = 1; t < std::min<int>(threads, int(groups.size())); ++t) pool.emplace_back(work);
-    work();
-    for (auto& thread : pool) thread.join();
-  }
-  for (const auto& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
+  // Bad input (a grid that does not match, no height field) is thrown by the analysis.
+  auto parts = run_ocean_check_groups(case_file.ocean, frames, ends, check_options, check_groups(),
+                                      threads);
   // Merged in run_ocean_checks' order; with a free scale each group reports the same fitted
   // scale (from frame 0), kept once.
   bool have_scale = false;

@@ -55,6 +55,21 @@ void require_judgeable_rounding(const reference::OceanCase& ocean_case, double u
 // The names of the checks, in the order they run.
 std::vector<std::string> ocean_check_names();
 
+// Groups of checks run concurrently on `threads` threads (the gate): every group judges one
+// analysis of `frames`, made once; a group marked ends_only judges `ends` instead (the first and
+// last frames with every field; its analysis is copied from the first when both have the same
+// frame 0). Reports in the groups' order; the first group's error is thrown.
+struct OceanCheckGroup {
+  std::vector<std::string> checks;
+  bool ends_only = false;
+};
+std::vector<OceanCheckReport> run_ocean_check_groups(const reference::OceanCase& ocean_case,
+                                                     const reference::FrameSequence& frames,
+                                                     const reference::FrameSequence& ends,
+                                                     const OceanCheckOptions& options,
+                                                     const std::vector<OceanCheckGroup>& groups,
+                                                     int threads);
+
 // Runs the checks named (all when empty) on `frames`, which must match the case's grid.
 // Throws InvalidInput for an unknown check name, mismatched grids or frames without height.
 OceanCheckReport run_ocean_checks(const reference::OceanCase& ocean_case,

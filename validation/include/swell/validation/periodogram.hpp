@@ -35,6 +35,10 @@ std::vector<double> expected_periodogram(const std::vector<double>& travelling,
 // one forward 1-D FFT of its N samples over n, divided by N, coefficient m at k_m.
 std::vector<std::complex<double>> field_spectrum(const std::vector<double>& field,
                                                  const reference::Sampling& sampling);
+// The same into `spectrum` (resized), reusing its memory: for loops over many frames, where a
+// fresh multi-megabyte vector per frame costs its page faults again.
+void field_spectrum(const std::vector<double>& field, const reference::Sampling& sampling,
+                    std::vector<std::complex<double>>& spectrum);
 std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
                                         const reference::Sampling& sampling);
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,
