@@ -175,32 +175,6 @@ namespace {
   cos_x = ((quadrant + 1) & 2) ? -c : c;
 }
 
-// sin x and cos x in float for |x| ≤ π + 2⁻² (an fp32 frame's phases: the exact reduction of
-// ωt is done in double by reference::reduced_phase, then rounded to float — an error of at most
-// 2⁻²⁴·π ≈ 1.9e-7 rad, within a few float roundings of the wave h̃ it multiplies, which is
-// rounded to float anyway). Cody–Waite reduction by π/2 split in two floats (q ≤ 2: q·p1 is
-// exact, x − q·p1 exact by Sterbenz), then Cephes' sinf/cosf minimax polynomials on |r| ≤ π/4
-// (largest error 9.2e-8 over every float in [−3.4, 3.4] against long double sin/cos: 1.5 ulp
-// of 1). Twice the lanes of the double version and half its terms (docs/performance.md §5).
-[[gnu::always_inline]] inline void sin_cos(float x, float& sin_x, float& cos_x) {
-  constexpr float two_over_pi = 0.636619772367581f;
-  constexpr float p1 = 1.5707963705062866f;        // π/2 rounded to float
-  constexpr float p2 = -4.37113900018624283e-8f;   // π/2 − p1
-  constexpr float round_shift = 0x1.8p23f;         // x + 1.5·2²³ rounds x to an integer
-  const float shifted = x * two_over_pi + round_shift;
-  const float q = shifted - round_shift;
-  const auto quadrant = std::bit_cast<std::int32_t>(shifted);  // q mod 4 in its two low bits
-  const float r = (x - q * p1) - q * p2;
-  const float z = r * r;
-  const float sin_r = r + r * z * (-1.6666654611e-1f + z * (8.3321608736e-3f + z * -1.9515295891e-4f));
-  const float cos_r = 1.0f - 0.5f * z +
-                      z * z * (4.166664568298827e-2f + z * (-1.388731625493765e-3f + z * 2.443315711809948e-5f));
-  const bool odd = quadrant & 1;
-  const float s = odd ? cos_r : sin_r, c = odd ? sin_r : cos_r;
-  sin_x = (quadrant & 2) ? -s : s;
-  cos_x = ((quadrant + 1) & 2) ? -c : c;
-}
-
 // The per-row kernels are compiled for three instruction sets and picked when the program
 // loads (GCC function multiversioning): swell builds without -march, and with 4 or 8 doubles
 // a vector the assembly is several times cheaper. Other compilers get the baseline build.
@@ -217,8 +191,7 @@ namespace {
 // Structure of arrays, so that a row's loop vectorizes. For fp32, a, b and λ/|k| are stored
 // in float: the spectrum the fp32 transform takes is rounded to float anyway, and this halves
 // the memory a frame reads. ω and the phase ωt stay in double: ωt reaches 10⁴ rad and more
-// over long runs, where a float phase would be off by 10⁻³ rad; only the reduced phase
-// (|ωt mod 2π| ≤ π + 2⁻²) is rounded to float for its sin and cos.
+// over long runs, where a float phase would be off by 10⁻³ rad.
 template <typename Real>
 struct Waves {
   std::vector<Real> a_re, a_im, b_re, b_im, lambda_over_k;
@@ -250,7 +223,7 @@ struct RowTask {
   Real* out_mirror = nullptr;  // pairs: row (ny − j) mod ny of the first spectrum
   std::size_t plane = 0;       // Reals from one spectrum to the next
   // Scratch of end − begin entries, indexed from begin.
-  Real *cos_phase = nullptr, *sin_phase = nullptr;  // fp32: the phases' sin/cos in float
+  double *cos_phase = nullptr, *sin_phase = nullptr;
   Real *h_re = nullptr, *h_im = nullptr;
   const Real* field_scale = nullptr;  // [kRealFields] powers of two (State::field_scale)
 };
@@ -303,13 +276,12 @@ template <typename Real, bool PerColumnKy>
   const int width = task.width;
   const int begin = task.begin, end = task.end;
   // The scratch arrays are indexed from `begin`.
-  Real* __restrict c = task.cos_phase - begin;
-  Real* __restrict s = task.sin_phase - begin;
+  double* __restrict c = task.cos_phase - begin;
+  double* __restrict s = task.sin_phase - begin;
   const double* __restrict omega = task.omega;
   const double t = task.t;
-  // The phase reduced exactly in double; its sin and cos in the frame's precision.
 #pragma omp simd
-  for (int i = begin; i < end; ++i) sin_cos(Real(reference::reduced_phase(omega[i], t)), s[i], c[i]);
+  for (int i = begin; i < end; ++i) sin_cos(reference::reduced_phase(omega[i], t), s[i], c[i]);
   const Real* __restrict a_re = task.a_re;
   const Real* __restrict a_im = task.a_im;
   const Real* __restrict b_re = task.b_re;
@@ -322,9 +294,10 @@ template <typename Real, bool PerColumnKy>
   const std::size_t plane = task.plane;
   const Real ky = task.ky;
   const Real* __restrict ky_column = task.ky_column;
-  // h̃ = a e^(−iωt) + b e^(+iωt), then the fields at k: columns 0 … nx/2 of row j.
+  // h̃ = a e^(−iωt) + b e^(+iωt) (in Real: c and s are rounded once), then the fields at k:
+  // columns 0 … nx/2 of row j.
   const auto wave = [&](int i, Real& hr, Real& hi) {
-    const Real cr = c[i], sr = s[i];
+    const Real cr = Real(c[i]), sr = Real(s[i]);
     hr = (a_re[i] + b_re[i]) * cr + (a_im[i] - b_im[i]) * sr;
     hi = (a_im[i] + b_im[i]) * cr - (a_re[i] - b_re[i]) * sr;
   };
@@ -1038,7 +1011,7 @@ void Synthesizer::State::assemble(double t) const {
   const int columns_per_task = lattice ? std::min(half_columns, kLatticeBlock) : half_columns;
 #pragma omp parallel num_threads(options.threads)
   {
-    std::vector<Real> phase(2 * std::size_t(columns_per_task));
+    std::vector<double> phase(2 * std::size_t(columns_per_task));
     std::vector<Real> h(2 * std::size_t(columns_per_task));
     RowTask<Real> task;
     task.width = half_columns;
