@@ -191,6 +191,8 @@ class Analysis {
   // The same analysis over other frames of the same surface, whose frame 0 is `base`'s (the
   // gate's two end frames): μ, τ, the waves and frame 0's spectrum are base's, copied rather
   // than computed again (Ψ over the grid and an FFT: about 7 % of the gate's work at 512²).
+  // Every member the main constructor sets must be copied here too (the golden reports of
+  // GateGolden catch a derived check judged with a default-constructed one).
   Analysis(const Analysis& base, const FrameSequence& frames)
       : c_(base.c_), frames_(frames), options_(base.options_), sampling_(base.sampling_),
         count_(base.count_), log2n_(base.log2n_), u_(base.u_), scale_(base.scale_),
