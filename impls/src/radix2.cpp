@@ -426,8 +426,8 @@ Cx<T>* scratch(std::size_t count) {
 }
 
 // Elements per chunk for the middle stages: 128 × 128 bytes = 16 KB, inside L1 with the
-// twiddles beside it on cores with 32 KB (AMD Zen 4) as well as 48 KB (Intel). 256 measured the
-// same within this machine's noise.
+// twiddles beside it on cores with 32 KB (AMD Zen 4) as well as 48 KB (Zen 5, recent Intel).
+// 256 measured the same within this machine's noise.
 constexpr int kChunk = 128;
 
 // The last log2 R stages, spans n/R … n/2, fused with the scatter. With q = n/R, the R

@@ -5,13 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <atomic>
-#include <exception>
 #include <functional>
-#include <thread>
 #include <map>
 #include <numeric>
 
+#include "parallel_tasks.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/moments.hpp"
 #include "swell/validation/periodogram.hpp"
@@ -315,28 +313,8 @@ std::vector<CheckResult> run_cascade_set_checks(const std::vector<CascadeView>& 
                                                 const CascadeSetOptions& options) {
   // One analysis per cascade, on the gate's threads.
   std::vector<Analysis> analyses(cascades.size());
-  std::vector<std::exception_ptr> errors(cascades.size());
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t c; (c = next++) < cascades.size();) {
-      try {
-        analyses[c] = analyse(cascades[c]);
-      } catch (...) {
-        errors[c] = std::current_exception();
-      }
-    }
-  };
-  {
-    std::vector<std::thread> pool;
-    for (int t = 1; t < std::min<int>(std::max(1, options.threads), int(cascades.size())); ++t) {
-      pool.emplace_back(work);
-    }
-    work();
-    for (auto& thread : pool) thread.join();
-  }
-  for (const auto& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
+  detail::run_tasks(cascades.size(), options.threads,
+                    [&](std::size_t c) { analyses[c] = analyse(cascades[c]); });
   std::vector<CheckResult> out;
   if (options.relation == reference::CascadeRelation::additive) {
     for (const auto& a : analyses) {

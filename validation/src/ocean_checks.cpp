@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
-#include <exception>
 #include <optional>
 #include <cmath>
 #include <complex>
@@ -16,8 +14,8 @@
 #include <numbers>
 #include <numeric>
 #include <span>
-#include <thread>
 
+#include "parallel_tasks.hpp"
 #include "swell/impls/transform.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/phase.hpp"
@@ -1729,26 +1727,9 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
     }
   }
   std::vector<OceanCheckReport> parts(groups.size());
-  std::vector<std::exception_ptr> errors(groups.size());
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t g; (g = next++) < groups.size();) {
-      try {
-        parts[g] = run_on(groups[g].ends_only && ends_analysis ? *ends_analysis : analysis, groups[g].checks);
-      } catch (...) {
-        errors[g] = std::current_exception();
-      }
-    }
-  };
-  {
-    std::vector<std::thread> pool;
-    for (int t = 1; t < std::min<int>(threads, int(groups.size())); ++t) pool.emplace_back(work);
-    work();
-    for (auto& thread : pool) thread.join();
-  }
-  for (const auto& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
+  detail::run_tasks(groups.size(), threads, [&](std::size_t g) {
+    parts[g] = run_on(groups[g].ends_only && ends_analysis ? *ends_analysis : analysis, groups[g].checks);
+  });
   return parts;
 }
 

@@ -21,6 +21,7 @@
 #include "swell/validation/ocean_checks.hpp"
 #include "swell/validation/ocean_matrix.hpp"
 #include "swell/validation/periodogram.hpp"
+#include "gate_cases.hpp"
 #include "test_engine.hpp"
 #include "test_support.hpp"
 
@@ -400,20 +401,10 @@ struct LatticeBug {
   bool shallow = false;
 };
 
-// The gate catalogue's sea (gate_catalogue_test.cpp): JONSWAP Hs 3 m, Tp 8 s, γ 3.3, cos-2s
-// s = 4 toward 30°, λ = 0.8, 8 frames 0.5 s apart, over 800 m (the peak at 8 Δk); shallow: TMA
-// Hs 1.5 m over 10 m of water.
+// The gate catalogue's sea (gate_cases.hpp), sampled by `lattice` (set_lattice replaces its
+// grid); shallow: TMA Hs 1.5 m over 10 m of water.
 OceanCase catalogue_case(std::shared_ptr<const RankOneLattice> lattice, bool shallow) {
-  OceanCase c;
-  c.spectrum = {shallow ? "tma" : "jonswap",
-                {{"hs", shallow ? 1.5 : 3.0}, {"tp", 8.0}, {"gamma", 3.3}}, {}};
-  if (shallow) c.depth = 10;
-  c.spreading = {"cos2s", {{"s", 4.0}}, {}};
-  c.wind_dir_deg = 30;
-  c.choppiness = 0.8;
-  c.dt = 0.5;
-  c.frames = 8;
-  c.seed = 7;
+  OceanCase c = shallow ? swell::test::shallow_case() : swell::test::catalogue_case();
   c.set_lattice(std::move(lattice));
   return c;
 }
