@@ -14,6 +14,7 @@ SWELL_BUILD_DIR="${SWELL_BUILD_DIR:-$SWELL_ROOT/build}"
 SWELL_PACKAGES=(
   build-essential cmake pkg-config
   libfftw3-dev libgtest-dev libgmock-dev libbenchmark-dev libceres-dev libopenimageio-dev
+  libopenexr-dev libdeflate-dev
   libvulkan-dev mesa-vulkan-drivers glslc vulkan-tools vulkan-validationlayers
   libvkfft-dev glslang-dev spirv-tools
   libboost-math-dev nlohmann-json3-dev libcli11-dev libfmt-dev libtomlplusplus-dev

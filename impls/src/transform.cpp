@@ -159,7 +159,7 @@ void Backend::validate(const TransformSpec& spec) const {
 
 // ------------------------------------------------------------------ HostBuffer
 
-HostBuffer::HostBuffer(std::size_t bytes) : bytes_(bytes) {
+HostBuffer::HostBuffer(std::size_t bytes, Fill fill) : bytes_(bytes) {
   // aligned_alloc needs a size that is a multiple of the alignment.
   // Arrays of 2 MiB and more are placed on 2 MiB boundaries and offered transparent huge pages
   // (madvise; a hint the kernel may ignore): a column pass steps a row (up to 64 KB) per sample,
@@ -172,7 +172,7 @@ HostBuffer::HostBuffer(std::size_t bytes) : bytes_(bytes) {
 #ifdef MADV_HUGEPAGE
   if (alignment == kHugePage) madvise(data_, rounded, MADV_HUGEPAGE);
 #endif
-  std::memset(data_, 0, rounded);
+  if (fill == Fill::zero) std::memset(data_, 0, rounded);
 }
 
 HostBuffer::~HostBuffer() { std::free(data_); }

@@ -95,6 +95,28 @@ double resolution_floor(double u, double mean_square_height, std::size_t count) 
   return 1e6 * u * u * mean_square_height / double(count);
 }
 
+// A series of `frames` values per resolved wave vector, all in one array: one allocation of
+// 16 B × waves × frames (128 MiB at 512² × 64 frames), on huge pages where the kernel gives them,
+// instead of one vector per wave vector, whose 131 072 allocations and page faults took a tenth
+// of the gate's CPU at that size.
+class WaveSeries {
+ public:
+  void assign(std::size_t waves, std::size_t frames) {
+    frames_ = frames;
+    // Not zeroed first: every entry is written, and zeroing 128 MiB on one thread (its page
+    // faults) held the others up.
+    buffer_ = std::make_unique<impls::HostBuffer>(std::max<std::size_t>(1, waves * frames) * sizeof(Complex),
+                                                  impls::HostBuffer::Fill::none);
+  }
+  std::span<const Complex> operator[](std::size_t wave) const { return {data() + wave * frames_, frames_}; }
+  Complex& at(std::size_t wave, std::size_t frame) { return data()[wave * frames_ + frame]; }
+
+ private:
+  Complex* data() const { return static_cast<Complex*>(buffer_->host_data()); }
+  std::size_t frames_ = 0;
+  std::unique_ptr<impls::HostBuffer> buffer_;
+};
+
 class Analysis {
  public:
   Analysis(const OceanCase& ocean_case, const FrameSequence& frames,
@@ -124,7 +146,7 @@ class Analysis {
     reference::require_valid_sampling(
         c_, frames.unit_roundoff > 2 * kFp64Roundoff ? reference::kFloat32 : reference::kFloat64, 0,
         "", &tau_);
-    spectrum0_ = field_spectrum(frames.field(0, Field::height), sampling_);
+    field_spectrum(frames.field(0, Field::height), sampling_, spectrum0_, &spectral_energy0_);
     mean_square0_ = mean_square(frames.field(0, Field::height));
 
     const double expected_total = std::accumulate(mu_.begin(), mu_.end(), 0.0);
@@ -194,7 +216,8 @@ class Analysis {
   Analysis(const Analysis& base, const FrameSequence& frames)
       : c_(base.c_), frames_(frames), options_(base.options_), sampling_(base.sampling_),
         count_(base.count_), log2n_(base.log2n_), u_(base.u_), scale_(base.scale_),
-        floor_(base.floor_), mean_square0_(base.mean_square0_), mu_(base.mu_), tau_(base.tau_),
+        floor_(base.floor_), mean_square0_(base.mean_square0_),
+        spectral_energy0_(base.spectral_energy0_), threads_(base.threads_), mu_(base.mu_), tau_(base.tau_),
         spectrum0_(base.spectrum0_), resolved_(base.resolved_), all_half_plane_(base.all_half_plane_) {
     for (const auto& frame : frames.frames) times_.push_back(frame.time);
   }
@@ -219,33 +242,63 @@ class Analysis {
 
   // The height spectra of every frame at the resolved wave vectors, computed once.
   // Once, whichever check asks first (the gate runs checks on one analysis concurrently).
-  const std::vector<std::vector<Complex>>& wave_series() const {
+  // Frames are transformed on up to threads() threads, four at a time (four values of a series
+  // share a cache line), each entry divided by N as field_spectrum divides it.
+  const WaveSeries& wave_series() const {
     std::call_once(series_once_, [this] {
-      series_.assign(resolved_.size(), std::vector<Complex>(times_.size()));
-      std::vector<Complex> spectrum;  // one buffer for every frame
-      for (std::size_t f = 0; f < times_.size(); ++f) {
-        if (f > 0) field_spectrum(frames_.field(int(f), Field::height), sampling_, spectrum);
-        const auto& s = f == 0 ? spectrum0_ : spectrum;
-        for (std::size_t w = 0; w < resolved_.size(); ++w) series_[w][f] = s[resolved_[w].index];
-      }
+      const std::size_t frames = times_.size();
+      series_.assign(resolved_.size(), frames);
+      spectral_energies_.assign(frames, spectral_energy0_);
+      for (std::size_t w = 0; w < resolved_.size(); ++w) series_.at(w, 0) = spectrum0_[resolved_[w].index];
+      const double scale = 1.0 / double(count_);
+      constexpr std::size_t kFramesPerTask = 4;
+      detail::run_tasks((frames + kFramesPerTask - 1) / kFramesPerTask, threads_, [&](std::size_t task) {
+        for (std::size_t f = std::max<std::size_t>(1, task * kFramesPerTask);
+             f < std::min(frames, (task + 1) * kFramesPerTask); ++f) {
+          const auto transform =
+              analysis_transform(frames_.field(int(f), Field::height), sampling_, &spectral_energies_[f]);
+          for (std::size_t w = 0; w < resolved_.size(); ++w) {
+            series_.at(w, f) = transform[resolved_[w].index] * scale;
+          }
+        }
+        release_analysis_scratch();
+      });
     });
     return series_;
   }
 
+  // Σ|X(k)|²/N of each frame's height transform X (field_spectrum's `energy`), made with the
+  // wave series.
+  const std::vector<long double>& spectral_energies() const {
+    wave_series();
+    return spectral_energies_;
+  }
+
   // a and b per resolved wave vector whose two waves are identifiable from the frame times.
+  // On up to threads() threads, in blocks of wave vectors kept in order.
   const std::vector<WaveFit>& wave_fits() const {
     std::call_once(fits_once_, [this] {
       const auto& series = wave_series();
-      for (std::size_t w = 0; w < resolved_.size(); ++w) {
-        WaveFit fit;
-        fit.wave = &resolved_[w];
-        if (!fit_two_waves(resolved_[w].omega, times_, series[w], fit.a, fit.b, fit.residual)) continue;
-        for (const Complex& y : series[w]) fit.energy += std::norm(y);
-        fits_.push_back(fit);
-      }
+      constexpr std::size_t kWavesPerTask = 4096;
+      std::vector<std::vector<WaveFit>> blocks((resolved_.size() + kWavesPerTask - 1) / kWavesPerTask);
+      detail::run_tasks(blocks.size(), threads_, [&](std::size_t task) {
+        for (std::size_t w = task * kWavesPerTask; w < std::min(resolved_.size(), (task + 1) * kWavesPerTask); ++w) {
+          WaveFit fit;
+          fit.wave = &resolved_[w];
+          if (!fit_two_waves(resolved_[w].omega, times_, series[w], fit.a, fit.b, fit.residual)) continue;
+          for (const Complex& y : series[w]) fit.energy += std::norm(y);
+          blocks[task].push_back(fit);
+        }
+      });
+      for (const auto& block : blocks) fits_.insert(fits_.end(), block.begin(), block.end());
     });
     return fits_;
   }
+
+  // Threads for the shared work above (wave_series, wave_fits): the gate's, when it runs its
+  // groups of checks on one analysis; 1 otherwise.
+  void set_threads(int threads) { threads_ = std::max(1, threads); }
+  int threads() const { return threads_; }
 
  private:
   const OceanCase& c_;
@@ -254,10 +307,13 @@ class Analysis {
   Sampling sampling_;
   std::size_t count_ = 0;
   double log2n_ = 1, u_ = kFp64Roundoff, scale_ = 1, floor_ = 0, mean_square0_ = 0;
+  long double spectral_energy0_ = 0;
+  int threads_ = 1;
   std::vector<double> times_, mu_, tau_;
   std::vector<Complex> spectrum0_;
   std::vector<Wave> resolved_, all_half_plane_;
-  mutable std::vector<std::vector<Complex>> series_;
+  mutable WaveSeries series_;
+  mutable std::vector<long double> spectral_energies_;
   mutable std::vector<WaveFit> fits_;
   mutable std::once_flag series_once_, fits_once_;
 };
@@ -326,6 +382,25 @@ Results check_hermitian(const Analysis& a, OceanCheckReport&) {
 
 Results check_parseval(const Analysis& a, OceanCheckReport&) {
   const auto backend = impls::make_backend(a.options().analysis_backend);
+  const double bound = 8 * kFp64Roundoff * a.log2n();
+  auto result = [&](double worst) -> Results {
+    return {bounded("parseval", a.subject() + " via " + backend->name(), worst, bound,
+                    fmt::format("|Σh² − N Σ|ĥ|²| / Σh² ≤ {:.1e}", bound),
+                    fmt::format("Parseval holds to {:.1e} over {} frames{}", worst,
+                                a.frames().frames.size(), verdict(worst <= bound)))};
+  };
+  // Through the analysis's own backend the transforms are those the wave series made (the same
+  // plan on the same values): their spectral sums are taken from there, not transformed again.
+  if (a.options().analysis_backend == kAnalysisBackend) {
+    const auto& spectral = a.spectral_energies();
+    double worst = 0;
+    for (std::size_t f = 0; f < a.frames().frames.size(); ++f) {
+      long double spatial = 0;
+      for (double x : a.frames().field(int(f), Field::height)) spatial += (long double)x * x;
+      worst = std::max(worst, double(std::abs(spatial - spectral[f]) / std::max(spatial, 1e-300L)));
+    }
+    return result(worst);
+  }
   impls::TransformSpec spec;
   // A lattice's analysis is one 1-D transform over its N samples (DESIGN.md §1 "Sampling").
   spec.nx = a.sampling().is_lattice() ? static_cast<int>(a.count()) : a.sampling().grid().nx;
@@ -356,11 +431,7 @@ Results check_parseval(const Analysis& a, OceanCheckReport&) {
     spectral /= (long double)a.count();
     worst = std::max(worst, double(std::abs(spatial - spectral) / std::max(spatial, 1e-300L)));
   }
-  const double bound = 8 * kFp64Roundoff * a.log2n();
-  return {bounded("parseval", a.subject() + " via " + backend->name(), worst, bound,
-                  fmt::format("|Σh² − N Σ|ĥ|²| / Σh² ≤ {:.1e}", bound),
-                  fmt::format("Parseval holds to {:.1e} over {} frames{}", worst,
-                              a.frames().frames.size(), verdict(worst <= bound)))};
+  return result(worst);
 }
 
 // ------------------------------------------------------------------ energy
@@ -713,7 +784,7 @@ Results check_moments(const Analysis& a, OceanCheckReport& report) {
 // case's ω(k), to rounding. The residual energy fraction left by that fit and the ω that fits
 // best, per wave vector, measure how far the engine's dispersion is from the case's.
 double best_omega(double omega0, double max_omega, const std::vector<double>& times,
-                  const std::vector<Complex>& y) {
+                  std::span<const Complex> y) {
   auto residual_at = [&](double omega) {
     Complex a, b;
     double residual = 0;
@@ -811,7 +882,7 @@ std::string explain_dispersion(const OceanCase& c, const std::vector<MeasuredOme
 // Least squares of a1 e^(−iω1t) + b1 e^(iω1t) + a2 e^(−iω2t) + b2 e^(iω2t) to y_f at t_f: the
 // residual Σ |y − fit|² (infinite when the four columns are nearly dependent).
 double two_frequency_residual(double omega1, double omega2, const std::vector<double>& times,
-                              const std::vector<Complex>& y) {
+                              std::span<const Complex> y) {
   const std::size_t count = times.size();
   // Normal equations AᴴA x = Aᴴy of the four columns, solved by Gaussian elimination with
   // partial pivoting; a pivot below 10⁻⁹ of the largest diagonal means dependent columns.
@@ -819,8 +890,8 @@ double two_frequency_residual(double omega1, double omega2, const std::vector<do
   thread_local std::vector<std::array<Complex, 4>> rows;
   rows.resize(count);
   for (std::size_t f = 0; f < count; ++f) {
-    const Complex e1 = std::polar(1.0, -reference::reduced_phase(omega1, times[f]));
-    const Complex e2 = std::polar(1.0, -reference::reduced_phase(omega2, times[f]));
+    const Complex e1 = reference::unit_phasor(-reference::reduced_phase(omega1, times[f]));
+    const Complex e2 = reference::unit_phasor(-reference::reduced_phase(omega2, times[f]));
     rows[f] = {e1, std::conj(e1), e2, std::conj(e2)};
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) m[i][j] += std::conj(rows[f][i]) * rows[f][j];
@@ -873,7 +944,7 @@ std::string explain_mixed_frequencies(const Analysis& a, const std::vector<const
     std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
     return v[v.size() / 2];
   };
-  auto series_of = [&](const WaveFit* f) -> const std::vector<Complex>& {
+  auto series_of = [&](const WaveFit* f) -> std::span<const Complex> {
     return series[std::size_t(f->wave - a.waves().data())];
   };
   // 1. The offsets engines make: exact (10⁻⁶) where a single free ω explains only
@@ -1715,7 +1786,8 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
   // One analysis of the surface for every group (it was made once per group before: μ(k) from Ψ
   // over the grid, frame 0's spectrum and the waves, three times at 512²), and one over the
   // end frames that copies it when their frame 0 is the same field.
-  const Analysis analysis(ocean_case, frames, options);
+  Analysis analysis(ocean_case, frames, options);
+  analysis.set_threads(threads);
   const bool same_first = &ends == &frames || ends.field(0, Field::height) == frames.field(0, Field::height);
   std::optional<Analysis> ends_analysis;
   const bool any_ends = std::any_of(groups.begin(), groups.end(), [](const OceanCheckGroup& g) { return g.ends_only; });
@@ -1725,6 +1797,25 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
     } else {
       ends_analysis.emplace(ocean_case, ends, options);
     }
+  }
+  // The wave series and per-wave fits the time-resolved checks read (and parseval, through the
+  // analysis backend, the series' transforms), made first on every thread: a group that needed
+  // them would otherwise make them on one thread while the other groups wait for them.
+  static const std::vector<std::string> fit_readers = {"dispersion", "direction", "randomness"};
+  const std::vector<std::string> series_readers =
+      options.analysis_backend == kAnalysisBackend ? std::vector<std::string>{"parseval"}
+                                                   : std::vector<std::string>{};
+  auto needs = [&](const std::vector<std::string>& readers) {
+    return std::any_of(groups.begin(), groups.end(), [&](const OceanCheckGroup& g) {
+      return std::any_of(readers.begin(), readers.end(), [&](const std::string& name) {
+        return g.checks.empty() || std::find(g.checks.begin(), g.checks.end(), name) != g.checks.end();
+      });
+    });
+  };
+  if (needs(fit_readers)) {
+    analysis.wave_fits();
+  } else if (needs(series_readers)) {
+    analysis.wave_series();
   }
   std::vector<OceanCheckReport> parts(groups.size());
   detail::run_tasks(groups.size(), threads, [&](std::size_t g) {
@@ -1760,7 +1851,7 @@ OceanCheckReport run_on(const Analysis& analysis, const std::vector<std::string>
 
 }  // namespace
 
-bool fit_two_waves(double omega, const std::vector<double>& times, const std::vector<Complex>& y,
+bool fit_two_waves(double omega, const std::vector<double>& times, std::span<const Complex> y,
                    Complex& a, Complex& b, double& residual) {
   const double frames = double(times.size());
   // e^(−iωt_f) once per frame, for the normal equations and the residual (per thread: the
@@ -1769,7 +1860,7 @@ bool fit_two_waves(double omega, const std::vector<double>& times, const std::ve
   phases.resize(times.size());
   Complex s = 0, r1 = 0, r2 = 0;
   for (std::size_t f = 0; f < times.size(); ++f) {
-    const Complex e = phases[f] = std::polar(1.0, -reference::reduced_phase(omega, times[f]));
+    const Complex e = phases[f] = reference::unit_phasor(-reference::reduced_phase(omega, times[f]));
     s += std::conj(e) * std::conj(e);
     r1 += std::conj(e) * y[f];
     r2 += e * y[f];

@@ -145,7 +145,10 @@ std::unique_ptr<Backend> make_backend(const std::string& name_and_options);
 // Host memory aligned to 64 bytes (one cache line; AVX-512 width).
 class HostBuffer final : public Buffer {
  public:
-  explicit HostBuffer(std::size_t bytes);
+  // Fill::zero (the default) zeroes the bytes; Fill::none leaves them as the allocator gives
+  // them, for a caller that writes every byte before reading any.
+  enum class Fill { zero, none };
+  explicit HostBuffer(std::size_t bytes, Fill fill = Fill::zero);
   ~HostBuffer() override;
   HostBuffer(const HostBuffer&) = delete;
   HostBuffer& operator=(const HostBuffer&) = delete;

@@ -6,6 +6,7 @@
 // with, in one realization, I(k) exponentially distributed with mean μ(k) and independent
 // over a half plane of k (I(−k) = I(k)).
 #include <complex>
+#include <span>
 #include <vector>
 
 #include "swell/reference/directional.hpp"
@@ -13,6 +14,10 @@
 #include "swell/reference/sampling.hpp"
 
 namespace swell::validation {
+
+// The backend every analysis transform goes through: fp64 FFTW with estimate plans (a MEASURE
+// plan is chosen by timing, so its rounding, and the reports, would change from run to run).
+inline constexpr const char* kAnalysisBackend = "fftw:planner=estimate";
 
 // ĥ of a real field of grid.nx·grid.ny values (fp64 FFTW).
 std::vector<std::complex<double>> field_spectrum(const std::vector<double>& field,
@@ -37,8 +42,19 @@ std::vector<std::complex<double>> field_spectrum(const std::vector<double>& fiel
                                                  const reference::Sampling& sampling);
 // The same into `spectrum` (resized), reusing its memory: for loops over many frames, where a
 // fresh multi-megabyte vector per frame costs its page faults again.
+// With `energy`, also Σ|X(k)|² / N of the transform X = N ĥ before its division by N (summed in
+// long double in FFT order): the spectral side of Parseval's identity for kAnalysisBackend,
+// exactly as the parseval check computes it, from the transform made here anyway.
 void field_spectrum(const std::vector<double>& field, const reference::Sampling& sampling,
-                    std::vector<std::complex<double>>& spectrum);
+                    std::vector<std::complex<double>>& spectrum, long double* energy = nullptr);
+// X = N ĥ, the transform field_spectrum divides by N (ĥ(k) = X(k) · (1/N) bit for bit), in the
+// calling thread's scratch array: valid until this thread's next analysis transform. For loops
+// that need a few entries of many frames' spectra without writing each whole spectrum out;
+// release_analysis_scratch() afterwards frees the scratch when it is larger than it keeps.
+std::span<const std::complex<double>> analysis_transform(const std::vector<double>& field,
+                                                         const reference::Sampling& sampling,
+                                                         long double* energy = nullptr);
+void release_analysis_scratch();
 std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
                                         const reference::Sampling& sampling);
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,

@@ -4,6 +4,7 @@
 // ĥ(k, t) = a e^(−iωt) + b e^(+iωt) with a = h̃0(k) and b = conj h̃0(−k) (conventions
 // §Amplitudes).
 #include <complex>
+#include <span>
 #include <vector>
 
 namespace swell::validation {
@@ -13,7 +14,7 @@ namespace swell::validation {
 // 2π: the normal matrix's smaller eigenvalue F − |S| below 5 % of F), so a and b are not
 // identifiable; `residual` is Σ_f |y_f − fit_f|².
 bool fit_two_waves(double omega, const std::vector<double>& times,
-                   const std::vector<std::complex<double>>& y, std::complex<double>& a,
+                   std::span<const std::complex<double>> y, std::complex<double>& a,
                    std::complex<double>& b, double& residual);
 
 }  // namespace swell::validation
