@@ -110,7 +110,7 @@ void undo_zip_filters(std::uint8_t* bytes, std::size_t size, std::uint8_t* out) 
 }
 
 bool read_exr_scanlines(const std::string& file, const std::vector<std::string>& channels,
-                        int width, int height, float* pixels, ExrScratch& scratch) {
+                        int width, int height, const ExrLineSink& sink, ExrScratch& scratch) {
   // The stored bytes are little-endian; they are read as host words below.
   if constexpr (std::endian::native != std::endian::little) return false;
   const Context context(file);
@@ -137,7 +137,7 @@ bool read_exr_scanlines(const std::string& file, const std::vector<std::string>&
       std::int64_t(window.max.y) - window.min.y + 1 != height) {
     return false;
   }
-  // Where each stored channel goes in a pixel of the output (−1: not wanted), and its size.
+  // Which of `channels` each stored channel is (−1: not wanted), and its size.
   const std::size_t span = channels.size();
   std::vector<int> slot(std::size_t(list->num_channels), -1);
   std::vector<int> bytes(std::size_t(list->num_channels), 0);
@@ -184,21 +184,23 @@ bool read_exr_scanlines(const std::string& file, const std::vector<std::string>&
     }
     // A block holds its scanlines one after the other, each the channels in the file's
     // (alphabetical) order, each channel's samples of the line in turn.
+    const std::size_t samples = std::size_t(width);
+    scratch.line.resize(samples);
     for (int line = 0; line < chunk.height; ++line) {
-      float* row = pixels + std::size_t(chunk.start_y - window.min.y + line) * std::size_t(width) * span;
+      const std::size_t row = std::size_t(chunk.start_y - window.min.y + line);
       for (int c = 0; c < list->num_channels; ++c) {
-        const std::size_t samples = std::size_t(width);
         if (slot[c] >= 0) {
-          float* out = row + slot[c];
+          float* values = scratch.line.data();
           if (bytes[c] == 4) {
-            for (std::size_t x = 0; x < samples; ++x) std::memcpy(out + x * span, raw + 4 * x, 4);
+            std::memcpy(values, raw, 4 * samples);
           } else {
             for (std::size_t x = 0; x < samples; ++x) {
               std::uint16_t bits;
               std::memcpy(&bits, raw + 2 * x, 2);
-              out[x * span] = imath_half_to_float(bits);
+              values[x] = imath_half_to_float(bits);
             }
           }
+          sink(std::size_t(slot[c]), row, values);
         }
         raw += std::size_t(bytes[c]) * samples;
       }

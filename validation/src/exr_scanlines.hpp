@@ -10,6 +10,7 @@
 // and any error, returns false: the caller reads the file through OpenImageIO, which takes every
 // EXR and names what is wrong with a broken one.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,16 +26,21 @@ struct ExrScratch {
   ExrScratch(const ExrScratch&) = delete;
   ExrScratch& operator=(const ExrScratch&) = delete;
   std::vector<std::uint8_t> packed, inflated, raw;
+  std::vector<float> line;
   libdeflate_decompressor* inflater = nullptr;
 };
 
-// Reads the data window of `file` (width × height pixels) into `pixels`, interleaved: pixel p's
-// value of channels[k] at pixels[p × channels.size() + k], as float (half widened exactly) — the
-// layout of OpenImageIO's read_image(…, FLOAT) over those channels. True when every pixel of
-// every channel was read; false, with `pixels` unspecified, when the file is not one this reader
-// takes or cannot be read (see above).
+// Receives one scanline of one wanted channel: `slot` indexes the channels asked for, `row`
+// counts from the data window's top, `values` holds the line's width samples as float (half
+// widened exactly), valid during the call. Rows arrive top to bottom.
+using ExrLineSink = std::function<void(std::size_t slot, std::size_t row, const float* values)>;
+
+// Reads the data window of `file` (width × height pixels): every scanline of each of `channels`
+// (names, each in the file) to `sink` — the values OpenImageIO's read_image(…, FLOAT) gives for
+// them. True when every line of every channel was delivered; false when the file is not one
+// this reader takes or cannot be read (see above), after delivering any number of lines.
 bool read_exr_scanlines(const std::string& file, const std::vector<std::string>& channels,
-                        int width, int height, float* pixels, ExrScratch& scratch);
+                        int width, int height, const ExrLineSink& sink, ExrScratch& scratch);
 
 // Undoes the two filters OpenEXR's ZIP and ZIPS compression applies to a block before zlib
 // (ImfZip.cpp, Zip::compress/uncompress): the bytes were reordered, even-indexed ones first,

@@ -24,8 +24,27 @@ namespace {
 
 namespace fs = std::filesystem;
 using swell::validation::detail::ExrScratch;
-using swell::validation::detail::read_exr_scanlines;
 using swell::validation::detail::undo_zip_filters;
+
+// The reader's lines, interleaved as OpenImageIO's read_image lays them out (pixel p's value of
+// channels[k] at pixels[p × channels.size() + k]); a line delivered twice or out of order fails.
+bool read_exr_scanlines(const std::string& path, const std::vector<std::string>& channels,
+                        int width, int height, float* pixels, ExrScratch& scratch) {
+  const std::size_t span = channels.size();
+  std::vector<std::size_t> next_row(span, 0);
+  const bool read = swell::validation::detail::read_exr_scanlines(
+      path, channels, width, height,
+      [&](std::size_t slot, std::size_t row, const float* values) {
+        EXPECT_LT(slot, span);
+        EXPECT_EQ(row, next_row[slot]++) << channels[slot];
+        for (int x = 0; x < width; ++x) pixels[(row * width + x) * span + slot] = values[x];
+      },
+      scratch);
+  if (read) {
+    for (std::size_t slot = 0; slot < span; ++slot) EXPECT_EQ(next_row[slot], std::size_t(height));
+  }
+  return read;
+}
 
 struct ExrFile {
   std::string compression = "zip";
