@@ -138,18 +138,18 @@ class Analysis {
     for (const auto& frame : frames.frames) times_.push_back(frame.time);
 
     const auto spectrum = c_.directional_spectrum();
-    tau_ = expected_travelling_power(*spectrum, sampling_);
-    mu_ = expected_periodogram(tau_, sampling_);  // τ(k) + τ(−k): Ψ evaluated once
+    shared_->tau = expected_travelling_power(*spectrum, sampling_);
+    shared_->mu = expected_periodogram(shared_->tau, sampling_);  // τ(k) + τ(−k): Ψ evaluated once
     // The validity rule every command shares (reference/sampling_validity.hpp), in the number
     // format the frames were stored in: float32 (EXR, TIFF) or coarser (PNG) unless they carry
     // fp64's rounding.
     reference::require_valid_sampling(
         c_, frames.unit_roundoff > 2 * kFp64Roundoff ? reference::kFloat32 : reference::kFloat64, 0,
-        "", &tau_);
-    field_spectrum(frames.field(0, Field::height), sampling_, spectrum0_, &spectral_energy0_);
+        "", &shared_->tau);
+    field_spectrum(frames.field(0, Field::height), sampling_, shared_->spectrum0, &spectral_energy0_);
     mean_square0_ = mean_square(frames.field(0, Field::height));
 
-    const double expected_total = std::accumulate(mu_.begin(), mu_.end(), 0.0);
+    const double expected_total = std::accumulate(shared_->mu.begin(), shared_->mu.end(), 0.0);
     if (!(expected_total > 0)) {
       throw InvalidInput("the case's spectrum puts no energy on these samples (" + c_.describe() + ")");
     }
@@ -170,10 +170,10 @@ class Analysis {
       w.k = std::hypot(w.kx, w.ky);
       w.omega = c_.omega(w.k);
       w.theta = std::atan2(w.ky, w.kx);
-      w.mu = mu_[e];
-      w.tau_plus = tau_[e];
-      w.tau_minus = tau_[w.minus_index];
-      all_half_plane_.push_back(w);
+      w.mu = shared_->mu[e];
+      w.tau_plus = shared_->tau[e];
+      w.tau_minus = shared_->tau[w.minus_index];
+      shared_->half_plane.push_back(w);
     }
     if (options.free_scale) {
       // The maximum-likelihood scale of exponential ordinates: the mean of I/μ over the
@@ -181,27 +181,27 @@ class Analysis {
       // energy.
       double sum = 0;
       int used = 0;
-      for (const Wave& w : all_half_plane_) {
+      for (const Wave& w : shared_->half_plane) {
         if (!(w.mu > 0) || w.mu * mean_square0_ / expected_total < floor_) continue;
-        sum += std::norm(spectrum0_[w.index]) / w.mu;
+        sum += std::norm(shared_->spectrum0[w.index]) / w.mu;
         ++used;
       }
       scale_ = used > 0 ? sum / used : 0;
       if (!(scale_ > 0)) throw InvalidInput("free scale: the height field is identically zero");
-      for (double& v : mu_) v *= scale_;
-      for (double& v : tau_) v *= scale_;
-      for (Wave& w : all_half_plane_) {
+      for (double& v : shared_->mu) v *= scale_;
+      for (double& v : shared_->tau) v *= scale_;
+      for (Wave& w : shared_->half_plane) {
         w.mu *= scale_;
         w.tau_plus *= scale_;
         w.tau_minus *= scale_;
       }
     }
-    for (const Wave& w : all_half_plane_) {
-      if (w.mu >= floor_ && w.mu > 0) resolved_.push_back(w);
+    for (const Wave& w : shared_->half_plane) {
+      if (w.mu >= floor_ && w.mu > 0) shared_->resolved.push_back(w);
     }
-    if (resolved_.empty()) {
+    if (shared_->resolved.empty()) {
       const bool rounding_hides_all = std::any_of(
-          all_half_plane_.begin(), all_half_plane_.end(), [](const Wave& w) { return w.mu > 0; });
+          shared_->half_plane.begin(), shared_->half_plane.end(), [](const Wave& w) { return w.mu > 0; });
       if (rounding_hides_all) throw_rounding_hides_every_wave(u_, c_);  // coarse integer frames
       throw InvalidInput("no wave vector of the sampling carries resolvable energy under the case's "
                          "spectrum (" + c_.describe() + ")");
@@ -209,16 +209,15 @@ class Analysis {
   }
 
   // The same analysis over other frames of the same surface, whose frame 0 is `base`'s (the
-  // gate's two end frames): μ, τ, the waves and frame 0's spectrum are base's, copied rather
-  // than computed again (Ψ over the grid and an FFT: about 7 % of the gate's work at 512²).
-  // Every member the main constructor sets must be copied here too (the golden reports of
-  // GateGolden catch a derived check judged with a default-constructed one).
+  // gate's two end frames): μ, τ, the waves and frame 0's spectrum are base's, shared rather
+  // than computed again (Ψ over the grid and an FFT: about 7 % of the gate's work at 512²) or
+  // copied (30 MB at 512²). Every scalar the main constructor sets must be copied here too (the
+  // golden reports of GateGolden catch a derived check judged with a default-constructed one).
   Analysis(const Analysis& base, const FrameSequence& frames)
       : c_(base.c_), frames_(frames), options_(base.options_), sampling_(base.sampling_),
         count_(base.count_), log2n_(base.log2n_), u_(base.u_), scale_(base.scale_),
         floor_(base.floor_), mean_square0_(base.mean_square0_),
-        spectral_energy0_(base.spectral_energy0_), threads_(base.threads_), mu_(base.mu_), tau_(base.tau_),
-        spectrum0_(base.spectrum0_), resolved_(base.resolved_), all_half_plane_(base.all_half_plane_) {
+        spectral_energy0_(base.spectral_energy0_), threads_(base.threads_), shared_(base.shared_) {
     for (const auto& frame : frames.frames) times_.push_back(frame.time);
   }
 
@@ -231,13 +230,13 @@ class Analysis {
   double unit_roundoff() const { return u_; }
   double scale() const { return scale_; }
   const std::vector<double>& times() const { return times_; }
-  const std::vector<double>& mu() const { return mu_; }
-  const std::vector<Complex>& spectrum0() const { return spectrum0_; }
-  double periodogram0(std::size_t e) const { return std::norm(spectrum0_[e]); }
+  const std::vector<double>& mu() const { return shared_->mu; }
+  const std::vector<Complex>& spectrum0() const { return shared_->spectrum0; }
+  double periodogram0(std::size_t e) const { return std::norm(shared_->spectrum0[e]); }
   double mean_square0() const { return mean_square0_; }
   double floor() const { return floor_; }
-  const std::vector<Wave>& waves() const { return resolved_; }
-  const std::vector<Wave>& half_plane() const { return all_half_plane_; }
+  const std::vector<Wave>& waves() const { return shared_->resolved; }
+  const std::vector<Wave>& half_plane() const { return shared_->half_plane; }
   std::string subject() const { return c_.describe(); }
 
   // The height spectra of every frame at the resolved wave vectors, computed once.
@@ -247,9 +246,9 @@ class Analysis {
   const WaveSeries& wave_series() const {
     std::call_once(series_once_, [this] {
       const std::size_t frames = times_.size();
-      series_.assign(resolved_.size(), frames);
+      series_.assign(shared_->resolved.size(), frames);
       spectral_energies_.assign(frames, spectral_energy0_);
-      for (std::size_t w = 0; w < resolved_.size(); ++w) series_.at(w, 0) = spectrum0_[resolved_[w].index];
+      for (std::size_t w = 0; w < shared_->resolved.size(); ++w) series_.at(w, 0) = shared_->spectrum0[shared_->resolved[w].index];
       const double scale = 1.0 / double(count_);
       constexpr std::size_t kFramesPerTask = 4;
       detail::run_tasks((frames + kFramesPerTask - 1) / kFramesPerTask, threads_, [&](std::size_t task) {
@@ -257,8 +256,8 @@ class Analysis {
              f < std::min(frames, (task + 1) * kFramesPerTask); ++f) {
           const auto transform =
               analysis_transform(frames_.field(int(f), Field::height), sampling_, &spectral_energies_[f]);
-          for (std::size_t w = 0; w < resolved_.size(); ++w) {
-            series_.at(w, f) = transform[resolved_[w].index] * scale;
+          for (std::size_t w = 0; w < shared_->resolved.size(); ++w) {
+            series_.at(w, f) = transform[shared_->resolved[w].index] * scale;
           }
         }
         release_analysis_scratch();
@@ -275,22 +274,41 @@ class Analysis {
   }
 
   // a and b per resolved wave vector whose two waves are identifiable from the frame times.
-  // On up to threads() threads, in blocks of wave vectors kept in order.
+  // In the order of the resolved waves, those whose fit is identifiable. The phases
+  // e^(−iωt_f) depend on ω alone, which wave vectors of one |k| share (on a square grid (n, m),
+  // (−n, m), (m, n), (−m, n) and any other of the same n² + m²): they are made once per distinct
+  // ω, about a quarter as many sincos as one per wave vector. On up to threads() threads.
   const std::vector<WaveFit>& wave_fits() const {
     std::call_once(fits_once_, [this] {
       const auto& series = wave_series();
+      std::vector<std::size_t> by_omega(shared_->resolved.size());
+      std::iota(by_omega.begin(), by_omega.end(), std::size_t(0));
+      std::stable_sort(by_omega.begin(), by_omega.end(), [&](std::size_t x, std::size_t y) {
+        return shared_->resolved[x].omega < shared_->resolved[y].omega;
+      });
+      std::vector<WaveFit> fit_of(shared_->resolved.size());
+      std::vector<char> fitted(shared_->resolved.size(), 0);
       constexpr std::size_t kWavesPerTask = 4096;
-      std::vector<std::vector<WaveFit>> blocks((resolved_.size() + kWavesPerTask - 1) / kWavesPerTask);
-      detail::run_tasks(blocks.size(), threads_, [&](std::size_t task) {
-        for (std::size_t w = task * kWavesPerTask; w < std::min(resolved_.size(), (task + 1) * kWavesPerTask); ++w) {
-          WaveFit fit;
-          fit.wave = &resolved_[w];
-          if (!fit_two_waves(resolved_[w].omega, times_, series[w], fit.a, fit.b, fit.residual)) continue;
+      detail::run_tasks((by_omega.size() + kWavesPerTask - 1) / kWavesPerTask, threads_, [&](std::size_t task) {
+        std::vector<Complex> phases;
+        double phases_omega = std::numeric_limits<double>::quiet_NaN();
+        const std::size_t end = std::min(by_omega.size(), (task + 1) * kWavesPerTask);
+        for (std::size_t i = task * kWavesPerTask; i < end; ++i) {
+          const std::size_t w = by_omega[i];
+          if (!(shared_->resolved[w].omega == phases_omega)) {
+            phases_omega = shared_->resolved[w].omega;
+            two_wave_phases(phases_omega, times_, phases);
+          }
+          WaveFit& fit = fit_of[w];
+          fit.wave = &shared_->resolved[w];
+          if (!fit_two_waves(phases, series[w], fit.a, fit.b, fit.residual)) continue;
           for (const Complex& y : series[w]) fit.energy += std::norm(y);
-          blocks[task].push_back(fit);
+          fitted[w] = 1;
         }
       });
-      for (const auto& block : blocks) fits_.insert(fits_.end(), block.begin(), block.end());
+      for (std::size_t w = 0; w < shared_->resolved.size(); ++w) {
+        if (fitted[w]) fits_.push_back(fit_of[w]);
+      }
     });
     return fits_;
   }
@@ -309,9 +327,14 @@ class Analysis {
   double log2n_ = 1, u_ = kFp64Roundoff, scale_ = 1, floor_ = 0, mean_square0_ = 0;
   long double spectral_energy0_ = 0;
   int threads_ = 1;
-  std::vector<double> times_, mu_, tau_;
-  std::vector<Complex> spectrum0_;
-  std::vector<Wave> resolved_, all_half_plane_;
+  std::vector<double> times_;
+  // What the frames' analysis over other frames of the same surface shares with it.
+  struct Shared {
+    std::vector<double> mu, tau;
+    std::vector<Complex> spectrum0;
+    std::vector<Wave> resolved, half_plane;
+  };
+  std::shared_ptr<Shared> shared_ = std::make_shared<Shared>();
   mutable WaveSeries series_;
   mutable std::vector<long double> spectral_energies_;
   mutable std::vector<WaveFit> fits_;
@@ -1851,16 +1874,27 @@ OceanCheckReport run_on(const Analysis& analysis, const std::vector<std::string>
 
 }  // namespace
 
+void two_wave_phases(double omega, const std::vector<double>& times, std::vector<Complex>& phases) {
+  phases.resize(times.size());
+  for (std::size_t f = 0; f < times.size(); ++f) {
+    phases[f] = reference::unit_phasor(-reference::reduced_phase(omega, times[f]));
+  }
+}
+
 bool fit_two_waves(double omega, const std::vector<double>& times, std::span<const Complex> y,
                    Complex& a, Complex& b, double& residual) {
-  const double frames = double(times.size());
-  // e^(−iωt_f) once per frame, for the normal equations and the residual (per thread: the
-  // gate runs checks concurrently).
+  // Per thread: the gate runs checks concurrently.
   thread_local std::vector<Complex> phases;
-  phases.resize(times.size());
+  two_wave_phases(omega, times, phases);
+  return fit_two_waves(phases, y, a, b, residual);
+}
+
+bool fit_two_waves(std::span<const Complex> phases, std::span<const Complex> y, Complex& a,
+                   Complex& b, double& residual) {
+  const double frames = double(phases.size());
   Complex s = 0, r1 = 0, r2 = 0;
-  for (std::size_t f = 0; f < times.size(); ++f) {
-    const Complex e = phases[f] = reference::unit_phasor(-reference::reduced_phase(omega, times[f]));
+  for (std::size_t f = 0; f < phases.size(); ++f) {
+    const Complex e = phases[f];
     s += std::conj(e) * std::conj(e);
     r1 += std::conj(e) * y[f];
     r2 += e * y[f];
@@ -1871,7 +1905,7 @@ bool fit_two_waves(double omega, const std::vector<double>& times, std::span<con
   a = (frames * r1 - s * r2) / det;
   b = (frames * r2 - std::conj(s) * r1) / det;
   residual = 0;
-  for (std::size_t f = 0; f < times.size(); ++f) {
+  for (std::size_t f = 0; f < phases.size(); ++f) {
     const Complex e = phases[f];
     residual += std::norm(y[f] - a * e - b * std::conj(e));
   }

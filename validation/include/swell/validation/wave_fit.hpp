@@ -17,4 +17,12 @@ bool fit_two_waves(double omega, const std::vector<double>& times,
                    std::span<const std::complex<double>> y, std::complex<double>& a,
                    std::complex<double>& b, double& residual);
 
+// The same from the phases e^(−iωt_f) of two_wave_phases, for wave vectors that share ω (the
+// result is the one above, bit for bit).
+void two_wave_phases(double omega, const std::vector<double>& times,
+                     std::vector<std::complex<double>>& phases);
+bool fit_two_waves(std::span<const std::complex<double>> phases,
+                   std::span<const std::complex<double>> y, std::complex<double>& a,
+                   std::complex<double>& b, double& residual);
+
 }  // namespace swell::validation
