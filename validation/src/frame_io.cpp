@@ -13,6 +13,7 @@
 #include <cstring>
 #include <exception>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -393,17 +394,20 @@ double read_image_frame(const fs::path& path, StoredFormat format, const Grid& g
         [&](std::size_t slot, std::size_t row, const float* values) {
           Taken& t = taken[slot];
           const std::size_t start = row * width;
-          bool finite = true;
+          // |v| ≤ FLT_MAX is false for ±∞ and NaN; an integer OR of it vectorizes (a bool &=
+          // of std::isfinite did not: 3.5 % of the gate's CPU).
+          constexpr float kLargest = std::numeric_limits<float>::max();
+          int non_finite = 0;
           if (t.kept) {
             double* out = t.values.data() + start;
             for (std::size_t x = 0; x < width; ++x) {
               out[x] = values[x];
-              finite &= std::isfinite(values[x]);
+              non_finite |= !(std::fabs(values[x]) <= kLargest);
             }
           } else {
-            for (std::size_t x = 0; x < width; ++x) finite &= std::isfinite(values[x]);
+            for (std::size_t x = 0; x < width; ++x) non_finite |= !(std::fabs(values[x]) <= kLargest);
           }
-          if (finite) return;
+          if (!non_finite) return;
           for (std::size_t x = 0; x < width; ++x) {
             if (std::isfinite(values[x])) continue;
             if (t.bad++ == 0) {  // rows arrive in order: the first is the lowest index

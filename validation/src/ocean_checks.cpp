@@ -119,9 +119,11 @@ class WaveSeries {
 
 class Analysis {
  public:
+  // `threads` (≥ 1) for Ψ over the grid here and the shared work below (wave_series, wave_fits).
   Analysis(const OceanCase& ocean_case, const FrameSequence& frames,
-           const OceanCheckOptions& options)
-      : c_(ocean_case), frames_(frames), options_(options), sampling_(ocean_case.sampling()) {
+           const OceanCheckOptions& options, int threads = 1)
+      : c_(ocean_case), frames_(frames), options_(options), sampling_(ocean_case.sampling()),
+        threads_(std::max(1, threads)) {
     const Sampling given = frames.sampling();
     if (!given.same_as(sampling_)) {
       throw InvalidInput(fmt::format("frames are on a {} but the case says {}", given.describe(),
@@ -138,7 +140,7 @@ class Analysis {
     for (const auto& frame : frames.frames) times_.push_back(frame.time);
 
     const auto spectrum = c_.directional_spectrum();
-    shared_->tau = expected_travelling_power(*spectrum, sampling_);
+    shared_->tau = expected_travelling_power(*spectrum, sampling_, threads_);
     shared_->mu = expected_periodogram(shared_->tau, sampling_);  // τ(k) + τ(−k): Ψ evaluated once
     // The validity rule every command shares (reference/sampling_validity.hpp), in the number
     // format the frames were stored in: float32 (EXR, TIFF) or coarser (PNG) unless they carry
@@ -241,24 +243,32 @@ class Analysis {
 
   // The height spectra of every frame at the resolved wave vectors, computed once.
   // Once, whichever check asks first (the gate runs checks on one analysis concurrently).
-  // Frames are transformed on up to threads() threads, four at a time (four values of a series
-  // share a cache line), each entry divided by N as field_spectrum divides it.
+  // Frames are transformed on up to threads() threads, four at a time, each entry divided by N
+  // as field_spectrum divides it. A wave's four values then fill one 64-byte line of its series
+  // in one go: written one frame at a time, each line was fetched from memory four times.
   const WaveSeries& wave_series() const {
     std::call_once(series_once_, [this] {
-      const std::size_t frames = times_.size();
-      series_.assign(shared_->resolved.size(), frames);
+      const std::size_t frames = times_.size(), waves = shared_->resolved.size();
+      series_.assign(waves, frames);
       spectral_energies_.assign(frames, spectral_energy0_);
-      for (std::size_t w = 0; w < shared_->resolved.size(); ++w) series_.at(w, 0) = shared_->spectrum0[shared_->resolved[w].index];
       const double scale = 1.0 / double(count_);
       constexpr std::size_t kFramesPerTask = 4;
       detail::run_tasks((frames + kFramesPerTask - 1) / kFramesPerTask, threads_, [&](std::size_t task) {
-        for (std::size_t f = std::max<std::size_t>(1, task * kFramesPerTask);
-             f < std::min(frames, (task + 1) * kFramesPerTask); ++f) {
+        const std::size_t first = task * kFramesPerTask, last = std::min(frames, first + kFramesPerTask);
+        thread_local std::vector<Complex> block;  // block[i × waves + w]: frame first + i
+        block.resize((last - first) * waves);
+        for (std::size_t f = first; f < last; ++f) {
+          Complex* values = block.data() + (f - first) * waves;
+          if (f == 0) {
+            for (std::size_t w = 0; w < waves; ++w) values[w] = shared_->spectrum0[shared_->resolved[w].index];
+            continue;
+          }
           const auto transform =
               analysis_transform(frames_.field(int(f), Field::height), sampling_, &spectral_energies_[f]);
-          for (std::size_t w = 0; w < shared_->resolved.size(); ++w) {
-            series_.at(w, f) = transform[shared_->resolved[w].index] * scale;
-          }
+          for (std::size_t w = 0; w < waves; ++w) values[w] = transform[shared_->resolved[w].index] * scale;
+        }
+        for (std::size_t w = 0; w < waves; ++w) {
+          for (std::size_t f = first; f < last; ++f) series_.at(w, f) = block[(f - first) * waves + w];
         }
         release_analysis_scratch();
       });
@@ -313,9 +323,6 @@ class Analysis {
     return fits_;
   }
 
-  // Threads for the shared work above (wave_series, wave_fits): the gate's, when it runs its
-  // groups of checks on one analysis; 1 otherwise.
-  void set_threads(int threads) { threads_ = std::max(1, threads); }
   int threads() const { return threads_; }
 
  private:
@@ -1809,8 +1816,7 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
   // One analysis of the surface for every group (it was made once per group before: μ(k) from Ψ
   // over the grid, frame 0's spectrum and the waves, three times at 512²), and one over the
   // end frames that copies it when their frame 0 is the same field.
-  Analysis analysis(ocean_case, frames, options);
-  analysis.set_threads(threads);
+  const Analysis analysis(ocean_case, frames, options, threads);
   const bool same_first = &ends == &frames || ends.field(0, Field::height) == frames.field(0, Field::height);
   std::optional<Analysis> ends_analysis;
   const bool any_ends = std::any_of(groups.begin(), groups.end(), [](const OceanCheckGroup& g) { return g.ends_only; });

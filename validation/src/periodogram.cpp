@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 
+#include "parallel_tasks.hpp"
 #include "swell/impls/transform.hpp"
 
 namespace swell::validation {
@@ -126,17 +127,21 @@ std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>&
 bool in_half_plane(int n, int m) { return m > 0 || (m == 0 && n > 0); }
 
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,
-                                              const Grid& grid) {
+                                              const Grid& grid, int threads) {
   std::vector<double> power(std::size_t(grid.nx) * grid.ny, 0.0);
   const double dk2 = grid.dkx() * grid.dky();
-  for (int j = 0; j < grid.ny; ++j) {
-    const int m = Grid::signed_index(j, grid.ny);
-    for (int i = 0; i < grid.nx; ++i) {
-      const int n = Grid::signed_index(i, grid.nx);
-      if (!grid.carries_energy(n, m)) continue;
-      power[std::size_t(j) * grid.nx + i] = 0.5 * spectrum.psi(n * grid.dkx(), m * grid.dky()) * dk2;
+  // Rows in blocks of 16 on up to `threads` threads (models are immutable once built).
+  constexpr int kRowsPerTask = 16;
+  detail::run_tasks(std::size_t((grid.ny + kRowsPerTask - 1) / kRowsPerTask), threads, [&](std::size_t task) {
+    for (int j = int(task) * kRowsPerTask; j < std::min(grid.ny, int(task + 1) * kRowsPerTask); ++j) {
+      const int m = Grid::signed_index(j, grid.ny);
+      for (int i = 0; i < grid.nx; ++i) {
+        const int n = Grid::signed_index(i, grid.nx);
+        if (!grid.carries_energy(n, m)) continue;
+        power[std::size_t(j) * grid.nx + i] = 0.5 * spectrum.psi(n * grid.dkx(), m * grid.dky()) * dk2;
+      }
     }
-  }
+  });
   return power;
 }
 
@@ -201,8 +206,8 @@ std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>&
 }
 
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,
-                                              const reference::Sampling& sampling) {
-  if (!sampling.is_lattice()) return expected_travelling_power(spectrum, sampling.grid());
+                                              const reference::Sampling& sampling, int threads) {
+  if (!sampling.is_lattice()) return expected_travelling_power(spectrum, sampling.grid(), threads);
   std::vector<double> power(sampling.size(), 0.0);
   const double dk2 = sampling.dkx() * sampling.dky();
   for (std::size_t c = 0; c < power.size(); ++c) {

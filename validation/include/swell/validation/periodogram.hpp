@@ -29,9 +29,10 @@ std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>&
 // μ(k) over the grid, in FFT order.
 std::vector<double> expected_periodogram(const reference::DirectionalSpectrum& spectrum,
                                          const reference::Grid& grid);
-// E|h̃0(k)|² = ½ Ψ(k) Δkx Δky: the mean power of the wave travelling along +k.
+// E|h̃0(k)|² = ½ Ψ(k) Δkx Δky: the mean power of the wave travelling along +k (rows on up to
+// `threads` threads; the values do not depend on it).
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,
-                                              const reference::Grid& grid);
+                                              const reference::Grid& grid, int threads = 1);
 // μ(k) = τ(k) + τ(−k) from the travelling power τ above, without evaluating Ψ again.
 std::vector<double> expected_periodogram(const std::vector<double>& travelling,
                                          const reference::Grid& grid);
@@ -58,7 +59,7 @@ void release_analysis_scratch();
 std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
                                         const reference::Sampling& sampling);
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,
-                                              const reference::Sampling& sampling);
+                                              const reference::Sampling& sampling, int threads = 1);
 std::vector<double> expected_periodogram(const std::vector<double>& travelling,
                                          const reference::Sampling& sampling);
 std::vector<double> expected_periodogram(const reference::DirectionalSpectrum& spectrum,
