@@ -1500,14 +1500,35 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   const double m0_first = a.mean_square0();
   double worst_z = 0, hs_min = 1e300, hs_max = 0;
   int worst_frame = 0;
-  std::vector<Complex> first_phase;  // e^(−2iωt0) per wave, once
-  for (const Wave& w : a.half_plane()) first_phase.push_back(std::polar(1.0, -reference::reduced_phase(2 * w.omega, times[0])));
+  // e^(−2iωt) depends on ω alone, which the wave vectors of one |k| share: made once per
+  // distinct ω (`omegas`; wave i's is omegas[group[i]]) and frame, a quarter of the sincos of
+  // one per wave vector (they were 7 % of the gate's CPU at 512² × 64 frames).
+  const auto& waves = a.half_plane();
+  std::vector<std::size_t> by_omega(waves.size());
+  std::iota(by_omega.begin(), by_omega.end(), std::size_t(0));
+  std::sort(by_omega.begin(), by_omega.end(),
+            [&](std::size_t x, std::size_t y) { return waves[x].omega < waves[y].omega; });
+  std::vector<double> omegas;
+  std::vector<std::size_t> group(waves.size());
+  for (std::size_t i : by_omega) {
+    if (omegas.empty() || !(omegas.back() == waves[i].omega)) omegas.push_back(waves[i].omega);
+    group[i] = omegas.size() - 1;
+  }
+  auto phases_at = [&](double t, std::vector<Complex>& phases) {
+    phases.resize(omegas.size());
+    for (std::size_t g = 0; g < omegas.size(); ++g) {
+      phases[g] = reference::unit_phasor(-reference::reduced_phase(2 * omegas[g], t));
+    }
+  };
+  std::vector<Complex> first_phase, phase;  // e^(−2iωt0) and e^(−2iωt) per distinct ω
+  phases_at(times[0], first_phase);
   for (std::size_t f = 1; f < times.size(); ++f) {
     const double m0 = mean_square(a.frames().field(int(f), Field::height));
+    phases_at(times[f], phase);
     double variance = 0;
-    for (std::size_t i = 0; i < a.half_plane().size(); ++i) {
-      const Wave& w = a.half_plane()[i];
-      const double change = std::norm(std::polar(1.0, -reference::reduced_phase(2 * w.omega, times[f])) - first_phase[i]);
+    for (std::size_t i = 0; i < waves.size(); ++i) {
+      const Wave& w = waves[i];
+      const double change = std::norm(phase[group[i]] - first_phase[group[i]]);
       variance += 8 * w.tau_plus * w.tau_minus * change;
     }
     variance += std::pow(16 * a.unit_roundoff() * a.log2n() * m0_first, 2);
