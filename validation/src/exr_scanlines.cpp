@@ -166,14 +166,17 @@ bool read_exr_scanlines(const std::string& file, const std::vector<std::string>&
   for (std::int64_t y = window.min.y; y <= window.max.y; y += lines_per_chunk) {
     exr_chunk_info_t chunk{};
     if (exr_read_scanline_chunk_info(exr, 0, int(y), &chunk) != EXR_ERR_SUCCESS) return false;
+    // A ZIP block the writer could not shrink is stored raw: a stored block is never larger
+    // than its pixels (which also bounds what a corrupt size field could make us allocate).
     if (chunk.start_y != y || chunk.width != width || chunk.height < 1 ||
         chunk.start_y + std::int64_t(chunk.height) - 1 > window.max.y ||
-        chunk.unpacked_size != line_bytes * std::size_t(chunk.height)) {
+        chunk.unpacked_size != line_bytes * std::size_t(chunk.height) ||
+        chunk.packed_size > chunk.unpacked_size) {
       return false;
     }
     scratch.packed.resize(chunk.packed_size);
     if (exr_read_chunk(exr, 0, &chunk, scratch.packed.data()) != EXR_ERR_SUCCESS) return false;
-    // A block the writer could not shrink is stored raw, whatever the file's compression.
+    // Raw when the writer could not shrink it, whatever the file's compression.
     const std::uint8_t* raw = scratch.packed.data();
     if (chunk.packed_size != chunk.unpacked_size) {
       if (compression == EXR_COMPRESSION_NONE ||
