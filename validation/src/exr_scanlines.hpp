@@ -4,7 +4,8 @@
 // It decodes through OpenEXRCore's chunk table and libdeflate instead of OpenImageIO's reader,
 // which inflates with zlib and allocates its buffers afresh for every 16-scanline block: at
 // 64 frames of 512² with six float channels that reading took ~2 s of CPU (zlib alone ~0.9 s,
-// page faults ~0.4 s), this one about a third of it (docs/gate.md §7).
+// page faults ~0.4 s); per frame on one thread this one takes 11 ms, OpenImageIO ~40 ms
+// (docs/gate.md §6).
 //
 // Any other file (tiled, deep, multi-part, subsampled or uint channels, PIZ, RLE, B44, DWA…),
 // and any error, returns false: the caller reads the file through OpenImageIO, which takes every
