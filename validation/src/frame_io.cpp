@@ -237,7 +237,6 @@ struct PixelScratch {
 // a field stored as integers: a uniform quantization error of step q = (high − low)/levels,
 // variance q²/12, white — as a unit roundoff u relative to the field's rms (the checks'
 // rounding budget is u² mean(v²), conventions §Tolerances), u = q/√(12 mean v²).
-
 double read_image_frame(const fs::path& path, StoredFormat format, const Grid& grid,
                         const InputSpec& input, const std::function<bool(Field)>& keep,
                         FieldFrame& frame, PixelScratch& scratch) {

@@ -95,6 +95,31 @@ double resolution_floor(double u, double mean_square_height, std::size_t count) 
   return 1e6 * u * u * mean_square_height / double(count);
 }
 
+// The distinct ω of a set of waves, for work that depends on ω alone (the phases e^(−iωt)):
+// the wave vectors of one |k| share it — on a square grid (n, m), (−n, m), (m, n), (−m, n) and
+// any other of the same n² + m² — so one per distinct ω is about a quarter as many as one per
+// wave vector. `order` lists the waves by ω (ties in their own order), wave i's ω is
+// omegas[group[i]].
+struct OmegaGroups {
+  std::vector<std::size_t> order, group;
+  std::vector<double> omegas;
+};
+
+template <typename Waves>
+OmegaGroups group_by_omega(const Waves& waves) {
+  OmegaGroups out;
+  out.order.resize(waves.size());
+  std::iota(out.order.begin(), out.order.end(), std::size_t(0));
+  std::stable_sort(out.order.begin(), out.order.end(),
+                   [&](std::size_t x, std::size_t y) { return waves[x].omega < waves[y].omega; });
+  out.group.resize(waves.size());
+  for (std::size_t i : out.order) {
+    if (out.omegas.empty() || !(out.omegas.back() == waves[i].omega)) out.omegas.push_back(waves[i].omega);
+    out.group[i] = out.omegas.size() - 1;
+  }
+  return out;
+}
+
 // A series of `frames` values per resolved wave vector, all in one array: one allocation of
 // 16 B × waves × frames (128 MiB at 512² × 64 frames), on huge pages where the kernel gives them,
 // instead of one vector per wave vector, whose 131 072 allocations and page faults took a tenth
@@ -243,7 +268,7 @@ class Analysis {
 
   // The height spectra of every frame at the resolved wave vectors, computed once.
   // Once, whichever check asks first (the gate runs checks on one analysis concurrently).
-  // Frames are transformed on up to threads() threads, four at a time, each entry divided by N
+  // Frames are transformed on up to `threads_` threads, four at a time, each entry divided by N
   // as field_spectrum divides it. A wave's four values then fill one 64-byte line of its series
   // in one go: written one frame at a time, each line was fetched from memory four times.
   const WaveSeries& wave_series() const {
@@ -283,19 +308,13 @@ class Analysis {
     return spectral_energies_;
   }
 
-  // a and b per resolved wave vector whose two waves are identifiable from the frame times.
-  // In the order of the resolved waves, those whose fit is identifiable. The phases
-  // e^(−iωt_f) depend on ω alone, which wave vectors of one |k| share (on a square grid (n, m),
-  // (−n, m), (m, n), (−m, n) and any other of the same n² + m²): they are made once per distinct
-  // ω, about a quarter as many sincos as one per wave vector. On up to threads() threads.
+  // a and b per resolved wave vector whose two waves are identifiable from the frame times, in
+  // the order of the resolved waves. The phases e^(−iωt_f) are made once per distinct ω
+  // (group_by_omega), the waves taken in ω order. On up to `threads_` threads.
   const std::vector<WaveFit>& wave_fits() const {
     std::call_once(fits_once_, [this] {
       const auto& series = wave_series();
-      std::vector<std::size_t> by_omega(shared_->resolved.size());
-      std::iota(by_omega.begin(), by_omega.end(), std::size_t(0));
-      std::stable_sort(by_omega.begin(), by_omega.end(), [&](std::size_t x, std::size_t y) {
-        return shared_->resolved[x].omega < shared_->resolved[y].omega;
-      });
+      const std::vector<std::size_t> by_omega = group_by_omega(shared_->resolved).order;
       std::vector<WaveFit> fit_of(shared_->resolved.size());
       std::vector<char> fitted(shared_->resolved.size(), 0);
       constexpr std::size_t kWavesPerTask = 4096;
@@ -323,7 +342,6 @@ class Analysis {
     return fits_;
   }
 
-  int threads() const { return threads_; }
 
  private:
   const OceanCase& c_;
@@ -1500,24 +1518,14 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   const double m0_first = a.mean_square0();
   double worst_z = 0, hs_min = 1e300, hs_max = 0;
   int worst_frame = 0;
-  // e^(−2iωt) depends on ω alone, which the wave vectors of one |k| share: made once per
-  // distinct ω (`omegas`; wave i's is omegas[group[i]]) and frame, a quarter of the sincos of
-  // one per wave vector (they were 7 % of the gate's CPU at 512² × 64 frames).
+  // e^(−2iωt) once per distinct ω and frame (group_by_omega; one per wave vector was 7 % of the
+  // gate's CPU at 512² × 64 frames).
   const auto& waves = a.half_plane();
-  std::vector<std::size_t> by_omega(waves.size());
-  std::iota(by_omega.begin(), by_omega.end(), std::size_t(0));
-  std::sort(by_omega.begin(), by_omega.end(),
-            [&](std::size_t x, std::size_t y) { return waves[x].omega < waves[y].omega; });
-  std::vector<double> omegas;
-  std::vector<std::size_t> group(waves.size());
-  for (std::size_t i : by_omega) {
-    if (omegas.empty() || !(omegas.back() == waves[i].omega)) omegas.push_back(waves[i].omega);
-    group[i] = omegas.size() - 1;
-  }
+  const OmegaGroups by_omega = group_by_omega(waves);
   auto phases_at = [&](double t, std::vector<Complex>& phases) {
-    phases.resize(omegas.size());
-    for (std::size_t g = 0; g < omegas.size(); ++g) {
-      phases[g] = reference::unit_phasor(-reference::reduced_phase(2 * omegas[g], t));
+    phases.resize(by_omega.omegas.size());
+    for (std::size_t g = 0; g < by_omega.omegas.size(); ++g) {
+      phases[g] = reference::unit_phasor(-reference::reduced_phase(2 * by_omega.omegas[g], t));
     }
   };
   std::vector<Complex> first_phase, phase;  // e^(−2iωt0) and e^(−2iωt) per distinct ω
@@ -1528,7 +1536,7 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
     double variance = 0;
     for (std::size_t i = 0; i < waves.size(); ++i) {
       const Wave& w = waves[i];
-      const double change = std::norm(phase[group[i]] - first_phase[group[i]]);
+      const double change = std::norm(phase[by_omega.group[i]] - first_phase[by_omega.group[i]]);
       variance += 8 * w.tau_plus * w.tau_minus * change;
     }
     variance += std::pow(16 * a.unit_roundoff() * a.log2n() * m0_first, 2);

@@ -96,8 +96,7 @@ void spectrum_into(const std::vector<double>& field, const Grid& grid,
   const double scale = 1.0 / double(count);
   spectrum.resize(count);
   for (std::size_t e = 0; e < count; ++e) spectrum[e] = out[e] * scale;
-  scratch(0).release_if_large();
-  scratch(1).release_if_large();
+  release_analysis_scratch();
 }
 }  // namespace
 
