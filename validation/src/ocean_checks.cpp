@@ -43,6 +43,39 @@ double mean_square(const std::vector<double>& v) {
   return sum / double(v.size());
 }
 
+// Σ x² over each of `fields`, accumulated in `Sum` (double: mean_square's sum; long double:
+// parseval's), each exactly the sequential loop's sum — the same additions in the same order —
+// but four fields side by side: a sequential sum waits ~4 cycles on each addition, and four
+// independent ones hide behind each other (parseval and statistics.hs_steady sum every frame).
+template <typename Sum>
+std::vector<Sum> sums_of_squares(const std::vector<const std::vector<double>*>& fields) {
+  std::vector<Sum> sums(fields.size(), Sum(0));
+  std::size_t f = 0;
+  for (; f + 4 <= fields.size(); f += 4) {
+    const std::vector<double>&a = *fields[f], &b = *fields[f + 1], &c = *fields[f + 2], &d = *fields[f + 3];
+    if (a.size() != b.size() || a.size() != c.size() || a.size() != d.size()) break;
+    Sum sa = 0, sb = 0, sc = 0, sd = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      sa += Sum(a[i]) * a[i];
+      sb += Sum(b[i]) * b[i];
+      sc += Sum(c[i]) * c[i];
+      sd += Sum(d[i]) * d[i];
+    }
+    sums[f] = sa, sums[f + 1] = sb, sums[f + 2] = sc, sums[f + 3] = sd;
+  }
+  for (; f < fields.size(); ++f) {
+    for (double x : *fields[f]) sums[f] += Sum(x) * x;
+  }
+  return sums;
+}
+
+// The height field of every frame, in frame order.
+std::vector<const std::vector<double>*> heights(const FrameSequence& frames) {
+  std::vector<const std::vector<double>*> out;
+  for (std::size_t f = 0; f < frames.frames.size(); ++f) out.push_back(&frames.field(int(f), Field::height));
+  return out;
+}
+
 // An exact result: passed ⇔ error ≤ bound.
 CheckResult bounded(std::string check, std::string subject, double error, double bound,
                     std::string criterion, std::string reason) {
@@ -145,8 +178,10 @@ class WaveSeries {
 class Analysis {
  public:
   // `threads` (≥ 1) for Ψ over the grid here and the shared work below (wave_series, wave_fits).
+  // `travelling`: τ(k) over the samples when the caller has it (run_ocean_check_groups); empty:
+  // evaluated here.
   Analysis(const OceanCase& ocean_case, const FrameSequence& frames,
-           const OceanCheckOptions& options, int threads = 1)
+           const OceanCheckOptions& options, int threads = 1, std::vector<double> travelling = {})
       : c_(ocean_case), frames_(frames), options_(options), sampling_(ocean_case.sampling()),
         threads_(std::max(1, threads)) {
     const Sampling given = frames.sampling();
@@ -165,7 +200,13 @@ class Analysis {
     for (const auto& frame : frames.frames) times_.push_back(frame.time);
 
     const auto spectrum = c_.directional_spectrum();
-    shared_->tau = expected_travelling_power(*spectrum, sampling_, threads_);
+    if (travelling.empty()) {
+      shared_->tau = expected_travelling_power(*spectrum, sampling_, threads_);
+    } else if (travelling.size() == sampling_.size()) {
+      shared_->tau = std::move(travelling);
+    } else {
+      throw InternalError("Analysis: travelling power of the wrong size");
+    }
     shared_->mu = expected_periodogram(shared_->tau, sampling_);  // τ(k) + τ(−k): Ψ evaluated once
     // The validity rule every command shares (reference/sampling_validity.hpp), in the number
     // format the frames were stored in: float32 (EXR, TIFF) or coarser (PNG) unless they carry
@@ -441,11 +482,10 @@ Results check_parseval(const Analysis& a, OceanCheckReport&) {
   // plan on the same values): their spectral sums are taken from there, not transformed again.
   if (a.options().analysis_backend == kAnalysisBackend) {
     const auto& spectral = a.spectral_energies();
+    const std::vector<long double> spatial = sums_of_squares<long double>(heights(a.frames()));
     double worst = 0;
-    for (std::size_t f = 0; f < a.frames().frames.size(); ++f) {
-      long double spatial = 0;
-      for (double x : a.frames().field(int(f), Field::height)) spatial += (long double)x * x;
-      worst = std::max(worst, double(std::abs(spatial - spectral[f]) / std::max(spatial, 1e-300L)));
+    for (std::size_t f = 0; f < spatial.size(); ++f) {
+      worst = std::max(worst, double(std::abs(spatial[f] - spectral[f]) / std::max(spatial[f], 1e-300L)));
     }
     return result(worst);
   }
@@ -1528,18 +1568,36 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
       phases[g] = reference::unit_phasor(-reference::reduced_phase(2 * by_omega.omegas[g], t));
     }
   };
-  std::vector<Complex> first_phase, phase;  // e^(−2iωt0) and e^(−2iωt) per distinct ω
+  std::vector<Complex> first_phase;  // e^(−2iωt0) per distinct ω
   phases_at(times[0], first_phase);
-  for (std::size_t f = 1; f < times.size(); ++f) {
-    const double m0 = mean_square(a.frames().field(int(f), Field::height));
-    phases_at(times[f], phase);
-    double variance = 0;
-    for (std::size_t i = 0; i < waves.size(); ++i) {
-      const Wave& w = waves[i];
-      const double change = std::norm(phase[by_omega.group[i]] - first_phase[by_omega.group[i]]);
-      variance += 8 * w.tau_plus * w.tau_minus * change;
+  const std::vector<double> sums = sums_of_squares<double>(heights(a.frames()));
+  // Σ over the waves for each frame, four frames side by side (each frame's sum sequential, as
+  // in sums_of_squares, so that their addition latencies overlap).
+  constexpr std::size_t kSideBySide = 4;
+  std::vector<double> variances(times.size(), 0.0);
+  std::vector<Complex> phase[kSideBySide];  // e^(−2iωt) per distinct ω of frames f … f + 3
+  for (std::size_t f = 1; f < times.size(); f += kSideBySide) {
+    const std::size_t together = std::min(kSideBySide, times.size() - f);
+    for (std::size_t j = 0; j < together; ++j) phases_at(times[f + j], phase[j]);
+    double sum[kSideBySide] = {};
+    auto add = [&](std::size_t frames_here) {
+      for (std::size_t i = 0; i < waves.size(); ++i) {
+        const Wave& w = waves[i];
+        const std::size_t g = by_omega.group[i];
+        const double weight = 8 * w.tau_plus * w.tau_minus;
+        for (std::size_t j = 0; j < frames_here; ++j) sum[j] += weight * std::norm(phase[j][g] - first_phase[g]);
+      }
+    };
+    if (together == kSideBySide) {
+      add(kSideBySide);  // a constant count: the four sums unrolled
+    } else {
+      add(together);
     }
-    variance += std::pow(16 * a.unit_roundoff() * a.log2n() * m0_first, 2);
+    for (std::size_t j = 0; j < together; ++j) variances[f + j] = sum[j];
+  }
+  for (std::size_t f = 1; f < times.size(); ++f) {
+    const double m0 = sums[f] / n;  // mean_square of frame f
+    const double variance = variances[f] + std::pow(16 * a.unit_roundoff() * a.log2n() * m0_first, 2);
     const double z = (m0 - m0_first) / std::sqrt(variance);
     if (std::abs(z) >= std::abs(worst_z)) {
       worst_z = z;
@@ -1848,12 +1906,13 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
                                                      const FrameSequence& ends,
                                                      const OceanCheckOptions& options,
                                                      const std::vector<OceanCheckGroup>& groups,
-                                                     int threads) {
+                                                     int threads,
+                                                     std::vector<double> travelling_power) {
   for (const auto& group : groups) require_known(group.checks);
   // One analysis of the surface for every group (it was made once per group before: μ(k) from Ψ
   // over the grid, frame 0's spectrum and the waves, three times at 512²), and one over the
   // end frames that copies it when their frame 0 is the same field.
-  const Analysis analysis(ocean_case, frames, options, threads);
+  const Analysis analysis(ocean_case, frames, options, threads, std::move(travelling_power));
   const bool same_first = &ends == &frames || ends.field(0, Field::height) == frames.field(0, Field::height);
   std::optional<Analysis> ends_analysis;
   const bool any_ends = std::any_of(groups.begin(), groups.end(), [](const OceanCheckGroup& g) { return g.ends_only; });

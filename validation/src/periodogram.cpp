@@ -137,7 +137,10 @@ std::vector<double> expected_travelling_power(const reference::DirectionalSpectr
       for (int i = 0; i < grid.nx; ++i) {
         const int n = Grid::signed_index(i, grid.nx);
         if (!grid.carries_energy(n, m)) continue;
-        power[std::size_t(j) * grid.nx + i] = 0.5 * spectrum.psi(n * grid.dkx(), m * grid.dky()) * dk2;
+        // Where Ψ vanishes τ is 0 even when Δk² overflows (a 1e-300 m patch), as
+        // summarize_sampling skips it.
+        const double psi = spectrum.psi(n * grid.dkx(), m * grid.dky());
+        if (psi != 0) power[std::size_t(j) * grid.nx + i] = 0.5 * psi * dk2;
       }
     }
   });
@@ -212,7 +215,8 @@ std::vector<double> expected_travelling_power(const reference::DirectionalSpectr
   for (std::size_t c = 0; c < power.size(); ++c) {
     if (!sampling.carries_energy(c)) continue;
     const auto [n, m] = sampling.wave_index(c);
-    power[c] = 0.5 * spectrum.psi(n * sampling.dkx(), m * sampling.dky()) * dk2;
+    const double psi = spectrum.psi(n * sampling.dkx(), m * sampling.dky());
+    if (psi != 0) power[c] = 0.5 * psi * dk2;
   }
   return power;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/gamma.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
@@ -191,6 +192,33 @@ double WeightedExponentialSum::quantile(double p) const {
   // bisection to the same 1e-14 took about 47 (the gate computes some 200 quantiles, each
   // tail a saddlepoint solve over up to 10⁵ weights).
   auto f = [&](double x) { return upper ? (1 - p) - survival(x) : cdf(x) - p; };
+  // Bracket the root tightly around the quantile of the gamma law with the same mean and
+  // variance (exact when the weights are equal): TOMS 748 then needs a handful of evaluations
+  // where the whole of [0, hi] took about 30 (α/48 and α/B quantiles over 10⁴–10⁵ weights).
+  if (p > 0 && p < 1) {
+    const boost::math::gamma_distribution<double> gamma(mean_ * mean_ / variance_, variance_ / mean_);
+    const double guess = std::clamp(boost::math::quantile(gamma, p), 1e-3 * mean_, hi);
+    double a = guess, b = guess, f_a = f(guess), f_b = f_a;
+    double step = 0.05 * std::sqrt(variance_);
+    for (int i = 0; i < 60 && (f_a >= 0 || f_b <= 0); ++i, step *= 2) {
+      if (f_a >= 0) {  // the root lies below a
+        b = a, f_b = f_a;
+        a = std::max(0.0, a - step);
+        f_a = f(a);
+      } else {  // above b
+        a = b, f_a = f_b;
+        b = std::min(hi, b + step);
+        f_b = f(b);
+      }
+      if ((a == 0 && f_a >= 0) || (b == hi && f_b <= 0)) break;
+    }
+    if (f_a < 0 && f_b > 0) {
+      std::uintmax_t iterations = 200;
+      const auto [x0, x1] = boost::math::tools::toms748_solve(
+          f, a, b, f_a, f_b, boost::math::tools::eps_tolerance<double>(32), iterations);
+      return 0.5 * (x0 + x1);
+    }
+  }
   const double f_lo = f(lo), f_hi = f(hi);
   if (f_lo < 0 && f_hi > 0) {
     std::uintmax_t iterations = 200;

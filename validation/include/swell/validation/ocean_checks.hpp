@@ -58,7 +58,10 @@ std::vector<std::string> ocean_check_names();
 // Groups of checks run concurrently on `threads` threads (the gate): every group judges one
 // analysis of `frames`, made once; a group marked ends_only judges `ends` instead (the first and
 // last frames with every field; its analysis is copied from the first when both have the same
-// frame 0). Reports in the groups' order; the first group's error is thrown.
+// frame 0). Reports in the groups' order; the first group's error is thrown. `travelling_power`:
+// τ(k) of the case on its samples (expected_travelling_power) when the caller has evaluated it
+// already (the gate, for its sampling check before reading), moved into the analysis instead
+// of evaluating Ψ over the samples again; empty: evaluated here.
 struct OceanCheckGroup {
   std::vector<std::string> checks;
   bool ends_only = false;
@@ -68,7 +71,8 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const reference::OceanCase&
                                                      const reference::FrameSequence& ends,
                                                      const OceanCheckOptions& options,
                                                      const std::vector<OceanCheckGroup>& groups,
-                                                     int threads);
+                                                     int threads,
+                                                     std::vector<double> travelling_power = {});
 
 // Runs the checks named (all when empty) on `frames`, which must match the case's grid.
 // Throws InvalidInput for an unknown check name, mismatched grids or frames without height.
