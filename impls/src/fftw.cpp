@@ -211,7 +211,10 @@ class FftwPlan final : public Plan {
       fftw_init_threads();
       fftwf_init_threads();
     });
-    load_wisdom_once();
+    // Wisdom from disk only for the plans that measure: FFTW gives an estimate plan any wisdom
+    // the process holds (FFTW manual §4.7), so loading it for one made the analysis transforms'
+    // rounding — and the gate's reports in their last digits — depend on the machine's cache.
+    if (flag != FFTW_ESTIMATE) load_wisdom_once();
     F::plan_with_nthreads(threads);
     // Plan on scratch arrays: MEASURE-class planning overwrites them. fftw_malloc aligns them
     // as FFTW's SIMD codelets like; execute() checks the caller's arrays match that alignment.

@@ -11,6 +11,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <complex>
 #include <cstdlib>
 #include <fmt/format.h>
 #include <filesystem>
@@ -26,6 +27,7 @@
 #include "swell/validation/case_file.hpp"
 #include "swell/validation/frame_io.hpp"
 #include "swell/validation/gate.hpp"
+#include "swell/validation/npy.hpp"
 #include "swell/validation/ocean_checks.hpp"
 #include "test_engine.hpp"
 
@@ -574,7 +576,9 @@ class GateCli : public GateFiles {
   // the case file that names them.
   fs::path write_engine_frames(EngineBug bug, FrameFormat format = FrameFormat::exr,
                                int frames = 8) {
-    const OceanCase c = small_case(frames);
+    return write_engine_frames(bug, small_case(frames), format);
+  }
+  fs::path write_engine_frames(EngineBug bug, const OceanCase& c, FrameFormat format) {
     swell::validation::FrameWriteOptions write;
     write.format = format;
     CaseFile case_file = as_case_file(c);
@@ -617,6 +621,48 @@ TEST_F(GateCli, ABuggyEngineFailsWithExitOneAndTheJunitNamesTheCheck) {
   if (have_python()) {
     EXPECT_EQ(xml_error(path("junit.xml")), "") << xml;
   }
+}
+
+// The gate's analysis transforms are FFTW estimate plans, and FFTW gives an estimate plan any
+// wisdom the process holds: the user's cache of MEASURE-class wisdom (left by swell bench or
+// swell fft) once changed the report's last digits; impls/src/fftw.cpp now loads the cache only
+// for plans that measure. The same report with and without such wisdom on disk.
+TEST_F(GateCli, TheReportDoesNotDependOnTheFftwWisdomCache) {
+  OceanCase c = small_case();
+  c.grid = Grid::create(128, 128, 800, 800);  // (at 64² the patient plan rounds as the estimate one)
+  const auto case_path = write_engine_frames(EngineBug::none, c, FrameFormat::exr);
+  std::vector<std::complex<double>> values(128 * 128);
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = {std::sin(0.1 * double(i)), std::cos(0.37 * double(i))};
+  swell::validation::write_npy(path("noise.npy"), swell::validation::NpyArray::from_values<std::complex<double>>(
+                                                      {128, 128}, values));
+  auto with_wisdom_directory = [&](const std::string& directory, const std::string& arguments) {
+    fs::create_directories(directory);
+    const char* before = std::getenv("SWELL_FFTW_WISDOM_DIR");
+    const std::string saved = before ? before : "";
+    ::setenv("SWELL_FFTW_WISDOM_DIR", directory.c_str(), 1);
+    const CliRun run = swell(arguments);
+    if (before) {
+      ::setenv("SWELL_FFTW_WISDOM_DIR", saved.c_str(), 1);
+    } else {
+      ::unsetenv("SWELL_FFTW_WISDOM_DIR");
+    }
+    return run;
+  };
+  // Patient wisdom for the analysis transform of the 128² frames (c2c forward in fp64).
+  const CliRun planned = with_wisdom_directory(
+      path("wisdom"), "fft --impl fftw:planner=patient --in " + path("noise.npy") + " --out " + path("out.npy"));
+  ASSERT_EQ(planned.exit_code, 0) << planned.output;
+  ASSERT_TRUE(fs::exists(dir_ / "wisdom" / "fftw-wisdom-fftw3"));
+  const CliRun with = with_wisdom_directory(path("wisdom"), "gate --case " + case_path.string() + " --json " + path("with.json"));
+  const CliRun without = with_wisdom_directory(path("empty"), "gate --case " + case_path.string() + " --json " + path("without.json"));
+  ASSERT_EQ(with.exit_code, 0) << with.output;
+  ASSERT_EQ(without.exit_code, 0) << without.output;
+  auto report = [&](const std::string& name) {
+    auto json = nlohmann::json::parse(read_text(path(name)));
+    json.erase("seconds");  // the only value that may differ between two runs
+    return json;
+  };
+  EXPECT_EQ(report("with.json"), report("without.json"));
 }
 
 TEST_F(GateCli, NumpyFramesThroughAnInputPattern) {
