@@ -207,15 +207,22 @@ class Analysis {
     } else {
       throw InternalError("Analysis: travelling power of the wrong size");
     }
-    shared_->mu = expected_periodogram(shared_->tau, sampling_);  // τ(k) + τ(−k): Ψ evaluated once
-    // The validity rule every command shares (reference/sampling_validity.hpp), in the number
-    // format the frames were stored in: float32 (EXR, TIFF) or coarser (PNG) unless they carry
-    // fp64's rounding.
-    reference::require_valid_sampling(
-        c_, frames.unit_roundoff > 2 * kFp64Roundoff ? reference::kFloat32 : reference::kFloat64, 0,
-        "", &shared_->tau);
-    field_spectrum(frames.field(0, Field::height), sampling_, shared_->spectrum0, &spectral_energy0_);
-    mean_square0_ = mean_square(frames.field(0, Field::height));
+    // Two independent parts side by side (the second is an FFT): run_tasks rethrows the first
+    // part's error before the second's, as when they ran one after the other.
+    detail::run_tasks(2, threads_, [&](std::size_t part) {
+      if (part == 0) {
+        shared_->mu = expected_periodogram(shared_->tau, sampling_);  // τ(k) + τ(−k): Ψ evaluated once
+        // The validity rule every command shares (reference/sampling_validity.hpp), in the
+        // number format the frames were stored in: float32 (EXR, TIFF) or coarser (PNG) unless
+        // they carry fp64's rounding.
+        reference::require_valid_sampling(
+            c_, frames.unit_roundoff > 2 * kFp64Roundoff ? reference::kFloat32 : reference::kFloat64,
+            0, "", &shared_->tau);
+      } else {
+        field_spectrum(frames.field(0, Field::height), sampling_, shared_->spectrum0, &spectral_energy0_);
+        mean_square0_ = mean_square(frames.field(0, Field::height));
+      }
+    });
 
     const double expected_total = std::accumulate(shared_->mu.begin(), shared_->mu.end(), 0.0);
     if (!(expected_total > 0)) {
