@@ -52,9 +52,11 @@ struct Fftw;
       return P##_alignment_of(reinterpret_cast<T*>(const_cast<void*>(p)));                   \
     }                                                                                        \
     static plan many_dft(int rank, const int* n, int howmany, void* in, int idist, void* out, \
-                         int odist, int sign, unsigned flags, const int* embed = nullptr) {  \
-      return P##_plan_many_dft(rank, n, howmany, static_cast<complex*>(in), embed, 1, idist, \
-                               static_cast<complex*>(out), embed, 1, odist, sign, flags);    \
+                         int odist, int sign, unsigned flags, const int* in_embed = nullptr, \
+                         const int* out_embed = nullptr) {                                  \
+      return P##_plan_many_dft(rank, n, howmany, static_cast<complex*>(in), in_embed, 1,    \
+                               idist, static_cast<complex*>(out), out_embed, 1, odist, sign, \
+                               flags);                                                       \
     }                                                                                        \
     static plan many_r2c(int rank, const int* n, int howmany, void* in, int idist, void* out, \
                          int odist, unsigned flags) {                                        \
@@ -101,9 +103,10 @@ struct Fftw<long double> {
     return fftwl_alignment_of(reinterpret_cast<long double*>(const_cast<void*>(p)));
   }
   static plan many_dft(int rank, const int* n, int howmany, void* in, int idist, void* out,
-                       int odist, int sign, unsigned flags, const int* embed = nullptr) {
-    return fftwl_plan_many_dft(rank, n, howmany, static_cast<complex*>(in), embed, 1, idist,
-                               static_cast<complex*>(out), embed, 1, odist, sign, flags);
+                       int odist, int sign, unsigned flags, const int* in_embed = nullptr,
+                       const int* out_embed = nullptr) {
+    return fftwl_plan_many_dft(rank, n, howmany, static_cast<complex*>(in), in_embed, 1, idist,
+                               static_cast<complex*>(out), out_embed, 1, odist, sign, flags);
   }
   static plan many_r2c(int rank, const int* n, int howmany, void* in, int idist, void* out,
                        int odist, unsigned flags) {
@@ -226,13 +229,14 @@ class FftwPlan final : public Plan {
     const unsigned preserve = in_place ? 0u : FFTW_PRESERVE_INPUT;
     const int sign = spec.direction == Direction::forward ? FFTW_FORWARD : FFTW_BACKWARD;
     if (pads_rows(spec, flag)) {
-      // In place on rows one element longer (see pads_rows): planned on a scratch array of
-      // that layout, executed on a copy of the caller's (execute()).
+      // From the caller's rows into padded ones (see pads_rows), then copied back out of them
+      // (execute()).
       pitch_ = spec.nx + kPad;
       padded_bytes_ = std::size_t(spec.ny) * std::size_t(pitch_) * sizeof(typename F::complex);
       std::unique_ptr<char, FftwFree> padded(static_cast<char*>(F::malloc(padded_bytes_)));
-      const int embed[2] = {spec.ny, pitch_};
-      plan_ = F::many_dft(2, n, 1, padded.get(), 0, padded.get(), 0, sign, flag, embed);
+      const int rows[2] = {spec.ny, spec.nx}, padded_rows[2] = {spec.ny, pitch_};
+      plan_ = F::many_dft(2, n, 1, pin, 0, padded.get(), 0, sign, flag | FFTW_PRESERVE_INPUT, rows,
+                          padded_rows);
       if (!plan_) throw UnsupportedTransform("fftw: " + spec.describe() + ": FFTW returned no plan");
       return;
     }
@@ -268,10 +272,13 @@ class FftwPlan final : public Plan {
       const std::size_t row = std::size_t(s.nx) * sizeof(typename F::complex);
       const std::size_t padded_row = std::size_t(pitch_) * sizeof(typename F::complex);
       auto padded = scratch_.acquire(padded_bytes_);
-      for (int y = 0; y < s.ny; ++y) {
-        std::memcpy(padded.get() + y * padded_row, static_cast<const char*>(in) + y * row, row);
+      if (F::alignment_of(in) == 0) {
+        F::execute_dft(plan_, in, padded.get());
+      } else {  // the plan wants the alignment it was planned with
+        auto in_copy = scratch_.acquire(s.input_bytes());
+        std::memcpy(in_copy.get(), in, s.input_bytes());
+        F::execute_dft(plan_, in_copy.get(), padded.get());
       }
-      F::execute_dft(plan_, padded.get(), padded.get());
       for (int y = 0; y < s.ny; ++y) {
         std::memcpy(static_cast<char*>(out) + y * row, padded.get() + y * padded_row, row);
       }
@@ -331,10 +338,10 @@ class FftwPlan final : public Plan {
   // FFTW's estimate planner splits a 2-D c2c transform into a pass along the rows and one down
   // the columns, each a loop of 1-D transforms; down the columns of rows whose length in bytes
   // is a multiple of 1 KiB every sample of a column falls into the same few cache sets, and the
-  // pass thrashes (512² fp64: 12.5 ms, of which 10.9 the columns). The same plan on rows 16
-  // bytes longer (FFTW's embedded layout) computes the same arithmetic — the same bits,
-  // TransformConformance.FftwEstimateOnPaddedRowsIsBitForBitFftwsOwnPlan — in 1.8 ms plus
-  // the two copies. MEASURE-class planners time their candidates and avoid the thrashing
+  // pass thrashes (512² fp64: 12.5 ms, of which 10.9 the columns). The same plan writing rows
+  // 16 bytes longer (FFTW's embedded layout) computes the same arithmetic — the same bits,
+  // TransformConformance.FftwEstimateOnPaddedRowsIsBitForBitFftwsOwnPlan — in 2.2 ms with the
+  // copy back to the caller's rows. MEASURE-class planners time their candidates and avoid the thrashing
   // themselves; they plan the array as given. Not fp80 (the long-double oracle): its estimate
   // plan of padded 128² rows factors differently and rounds otherwise.
   static bool pads_rows(const TransformSpec& spec, unsigned flag) {
