@@ -20,7 +20,10 @@
 // CPU time of every thread (on a shared machine real_time grows with the others' load, cpu_s
 // much less: on an idle machine real_time approaches cpu_s / threads); threads.
 // SWELL_GATE_THREADS sets GateOptions::threads (default 2; 0 = every hardware thread). Read
-// real_time: the gate runs on several threads, which cpu_time misses.
+// real_time: the gate runs on several threads, which cpu_time misses. FFTW wisdom on disk does
+// not change these figures: the gate's analysis plans with FFTW's estimate planner, which no
+// longer loads it (before 83ae62c it did, and runs on a machine with cached wisdom were faster
+// than a fresh machine's: docs/performance.md §6).
 //
 //   build/bench/swell_gate_bench --benchmark_filter=gate/512/64 --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
