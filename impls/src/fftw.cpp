@@ -228,21 +228,20 @@ class FftwPlan final : public Plan {
     void* pout = in_place ? pin : scratch_out.get();
     const unsigned preserve = in_place ? 0u : FFTW_PRESERVE_INPUT;
     const int sign = spec.direction == Direction::forward ? FFTW_FORWARD : FFTW_BACKWARD;
-    if (pads_rows(spec, flag)) {
-      // From the caller's rows into padded ones (see pads_rows), then copied back out of them
-      // (execute()).
-      pitch_ = spec.nx + kPad;
-      padded_bytes_ = std::size_t(spec.ny) * std::size_t(pitch_) * sizeof(typename F::complex);
-      std::unique_ptr<char, FftwFree> padded(static_cast<char*>(F::malloc(padded_bytes_)));
-      const int rows[2] = {spec.ny, spec.nx}, padded_rows[2] = {spec.ny, pitch_};
-      plan_ = F::many_dft(2, n, 1, pin, 0, padded.get(), 0, sign, flag | FFTW_PRESERVE_INPUT, rows,
-                          padded_rows);
-      if (!plan_) throw UnsupportedTransform("fftw: " + spec.describe() + ": FFTW returned no plan");
-      return;
-    }
     switch (spec.kind) {
       case Kind::c2c:
-        plan_ = F::many_dft(rank, dims, spec.howmany, pin, idist, pout, odist, sign, flag | preserve);
+        if (pads_rows(spec, flag)) {
+          // Into rows kPad elements longer (see pads_rows); execute() copies them back out.
+          pitch_ = spec.nx + kPad;
+          padded_bytes_ = std::size_t(spec.ny) * std::size_t(pitch_) * sizeof(typename F::complex);
+          std::unique_ptr<char, FftwFree> padded(static_cast<char*>(F::malloc(padded_bytes_)));
+          const int rows[2] = {spec.ny, spec.nx}, padded_rows[2] = {spec.ny, pitch_};
+          plan_ = F::many_dft(2, n, 1, pin, 0, padded.get(), 0, sign, flag | preserve, rows,
+                              padded_rows);
+        } else {
+          plan_ = F::many_dft(rank, dims, spec.howmany, pin, idist, pout, odist, sign,
+                              flag | preserve);
+        }
         break;
       case Kind::r2c:
         plan_ = F::many_r2c(rank, dims, spec.howmany, pin, idist, pout, odist, flag | preserve);
@@ -341,9 +340,9 @@ class FftwPlan final : public Plan {
   // pass thrashes (512² fp64: 12.5 ms, of which 10.9 the columns). The same plan writing rows
   // 16 bytes longer (FFTW's embedded layout) computes the same arithmetic — the same bits,
   // TransformConformance.FftwEstimateOnPaddedRowsIsBitForBitFftwsOwnPlan — in 2.2 ms with the
-  // copy back to the caller's rows. MEASURE-class planners time their candidates and avoid the thrashing
-  // themselves; they plan the array as given. Not fp80 (the long-double oracle): its estimate
-  // plan of padded 128² rows factors differently and rounds otherwise.
+  // copy back to the caller's rows. MEASURE-class planners time their candidates and avoid
+  // the thrashing themselves; they plan the array as given. Not fp80 (the long-double oracle):
+  // its estimate plan of padded 128² rows factors differently and rounds otherwise.
   static bool pads_rows(const TransformSpec& spec, unsigned flag) {
     const std::size_t row_bytes = std::size_t(spec.nx) * sizeof(typename Fftw<T>::complex);
     return !std::is_same_v<T, long double> && flag == FFTW_ESTIMATE && spec.kind == Kind::c2c &&
