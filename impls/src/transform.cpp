@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <new>
 #include <sstream>
 
-#include <sys/mman.h>
+#include "swell/impls/huge_pages.hpp"
 
 namespace swell::impls {
 
@@ -160,18 +161,19 @@ void Backend::validate(const TransformSpec& spec) const {
 // ------------------------------------------------------------------ HostBuffer
 
 HostBuffer::HostBuffer(std::size_t bytes, Fill fill) : bytes_(bytes) {
-  // aligned_alloc needs a size that is a multiple of the alignment.
   // Arrays of 2 MiB and more are placed on 2 MiB boundaries and offered transparent huge pages
-  // (madvise; a hint the kernel may ignore): a column pass steps a row (up to 64 KB) per sample,
-  // a new 4 KiB page — and a TLB miss — every time, one 2 MiB page holds 32…512 rows.
-  constexpr std::size_t kHugePage = std::size_t(2) << 20;
-  const std::size_t alignment = bytes >= kHugePage ? kHugePage : 64;
-  const std::size_t rounded = std::max<std::size_t>(alignment, (bytes + alignment - 1) / alignment * alignment);
-  data_ = std::aligned_alloc(alignment, rounded);
+  // (huge_pages.hpp): a column pass steps a row (up to 64 KB) per sample, a new 4 KiB page — and
+  // a TLB miss — every time, one 2 MiB page holds 32…512 rows; and one fault instead of 512.
+  // Smaller ones on a cache line (aligned_alloc needs a size that is a multiple of it).
+  std::size_t rounded = 0;
+  if (bytes >= kHugePageBytes) {
+    rounded = (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+    data_ = allocate_on_huge_pages(bytes);
+  } else {
+    rounded = std::max<std::size_t>(64, (bytes + 63) / 64 * 64);
+    data_ = std::aligned_alloc(64, rounded);
+  }
   if (!data_) throw std::bad_alloc();
-#ifdef MADV_HUGEPAGE
-  if (alignment == kHugePage) madvise(data_, rounded, MADV_HUGEPAGE);
-#endif
   if (fill == Fill::zero) std::memset(data_, 0, rounded);
 }
 

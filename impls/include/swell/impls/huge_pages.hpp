@@ -1,0 +1,19 @@
+#pragma once
+// Large arrays on transparent huge pages (docs/performance.md §7).
+//
+// Every first touch of a 4 KiB page is a page fault. On the virtual machines swell's CI and many
+// users run on, a fault costs ~14 µs (the 2-core reference VM: 128 MiB written for the first
+// time took 450 ms in 4 KiB pages, 11 ms in 2 MiB pages), so a gate of 64 frames of 512² spent
+// a third of its CPU faulting in its frames and analysis arrays. A 2 MiB page is one fault.
+#include <cstddef>
+
+namespace swell::impls {
+
+inline constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;
+
+// `bytes` (≥ 1) rounded up to whole 2 MiB pages, on a 2 MiB boundary, offered transparent huge
+// pages with madvise (a hint: the kernel may ignore it, e.g. with THP "never"); not zeroed.
+// nullptr when out of memory. Release with std::free.
+void* allocate_on_huge_pages(std::size_t bytes) noexcept;
+
+}  // namespace swell::impls

@@ -1,0 +1,78 @@
+// Large arrays on transparent huge pages (swell/impls/huge_pages.hpp): the allocation helper,
+// HostBuffer, and the global operator new that swell's programs link
+// (impls/src/large_allocations_new.cpp; this test program links it as every other does).
+#include <gtest/gtest.h>
+
+#include <complex>
+#include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+#include <new>
+#include <vector>
+
+#include "swell/impls/huge_pages.hpp"
+#include "swell/impls/transform.hpp"
+
+namespace {
+
+using swell::impls::kHugePageBytes;
+
+bool on_huge_page_boundary(const void* p) {
+  return reinterpret_cast<std::uintptr_t>(p) % kHugePageBytes == 0;
+}
+
+TEST(HugePages, AllocationsStartOnA2MiBBoundaryAndEveryByteIsWritable) {
+  for (std::size_t bytes : {kHugePageBytes, kHugePageBytes + 1, 3 * kHugePageBytes - 8}) {
+    void* data = swell::impls::allocate_on_huge_pages(bytes);
+    ASSERT_NE(data, nullptr) << bytes;
+    EXPECT_TRUE(on_huge_page_boundary(data)) << bytes;
+    // The whole rounded size is the caller's (madvise covers it): write its last byte too.
+    const std::size_t rounded = (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+    static_cast<volatile unsigned char*>(data)[rounded - 1] = 1;
+    std::free(data);
+  }
+}
+
+TEST(HugePages, AnImpossibleSizeIsNullNotAWrappedSmallBlock) {
+  // SIZE_MAX rounded up to 2 MiB wraps around to 0: must not become a tiny allocation.
+  EXPECT_EQ(swell::impls::allocate_on_huge_pages(std::numeric_limits<std::size_t>::max()), nullptr);
+  EXPECT_EQ(swell::impls::allocate_on_huge_pages(std::numeric_limits<std::size_t>::max() / 2), nullptr);
+}
+
+TEST(HugePages, HostBuffersOf2MiBAndMoreAreOnHugePageBoundariesAndZeroed) {
+  swell::impls::HostBuffer buffer(3 * kHugePageBytes / 2);
+  EXPECT_TRUE(on_huge_page_boundary(buffer.host_data()));
+  const auto* bytes = static_cast<const unsigned char*>(buffer.host_data());
+  for (std::size_t i = 0; i < buffer.bytes(); i += 4093) ASSERT_EQ(bytes[i], 0) << i;
+  swell::impls::HostBuffer small(1000);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(small.host_data()) % 64, 0u);
+}
+
+// Under AddressSanitizer its runtime's operator new is used instead (large_allocations_new.cpp).
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SWELL_SANITIZED_ALLOCATIONS 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define SWELL_SANITIZED_ALLOCATIONS 1
+#endif
+#ifndef SWELL_SANITIZED_ALLOCATIONS
+TEST(HugePages, TheProgramsOperatorNewPutsLargeVectorsOnHugePages) {
+  // A frame's field at 512² (2 MiB of doubles) and a larger one; with the default operator new
+  // these land 16 bytes past a 4 KiB page boundary.
+  std::vector<double> field(512 * 512, 1.0);
+  EXPECT_TRUE(on_huge_page_boundary(field.data()));
+  auto larger = std::make_unique<std::complex<double>[]>(512 * 512 + 3);
+  EXPECT_TRUE(on_huge_page_boundary(larger.get()));
+}
+
+TEST(HugePages, OperatorNewThrowsBadAllocWhenMemoryCannotExist) {
+  const std::size_t impossible = std::numeric_limits<std::size_t>::max() / 2;
+  EXPECT_THROW((void)::operator new(impossible), std::bad_alloc);
+  EXPECT_EQ(::operator new(impossible, std::nothrow), nullptr);
+}
+#endif
+
+}  // namespace
