@@ -233,6 +233,9 @@ class Analysis {
     floor_ = resolution_floor(u_, mean_square0_, count_);
 
     const double dkx = sampling_.dkx(), dky = sampling_.dky();
+    // Room for every wave vector of the half plane at once (about half the samples): grown by
+    // doubling, the copies touched twice the memory, a fresh array each time.
+    shared_->half_plane.reserve(count_ / 2 + 1);
     for (std::size_t e = 0; e < count_; ++e) {
       if (!sampling_.carries_energy(e)) continue;
       const auto [n, m] = sampling_.wave_index(e);
@@ -271,6 +274,7 @@ class Analysis {
         w.tau_minus *= scale_;
       }
     }
+    shared_->resolved.reserve(shared_->half_plane.size());
     for (const Wave& w : shared_->half_plane) {
       if (w.mu >= floor_ && w.mu > 0) shared_->resolved.push_back(w);
     }
@@ -383,6 +387,7 @@ class Analysis {
           fitted[w] = 1;
         }
       });
+      fits_.reserve(std::size_t(std::count(fitted.begin(), fitted.end(), char(1))));
       for (std::size_t w = 0; w < shared_->resolved.size(); ++w) {
         if (fitted[w]) fits_.push_back(fit_of[w]);
       }
