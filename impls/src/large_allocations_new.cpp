@@ -14,15 +14,6 @@
 
 #include "swell/impls/huge_pages.hpp"
 
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SWELL_SANITIZED_ALLOCATIONS 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__)
-#define SWELL_SANITIZED_ALLOCATIONS 1
-#endif
-
 #ifndef SWELL_SANITIZED_ALLOCATIONS
 void* operator new(std::size_t bytes) {
   if (bytes == 0) bytes = 1;

@@ -49,15 +49,7 @@ TEST(HugePages, HostBuffersOf2MiBAndMoreAreOnHugePageBoundariesAndZeroed) {
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(small.host_data()) % 64, 0u);
 }
 
-// Under AddressSanitizer its runtime's operator new is used instead (large_allocations_new.cpp).
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SWELL_SANITIZED_ALLOCATIONS 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__)
-#define SWELL_SANITIZED_ALLOCATIONS 1
-#endif
+// Under AddressSanitizer its runtime's operator new is used instead (huge_pages.hpp).
 #ifndef SWELL_SANITIZED_ALLOCATIONS
 TEST(HugePages, TheProgramsOperatorNewPutsLargeVectorsOnHugePages) {
   // A frame's field at 512² (2 MiB of doubles) and a larger one; with the default operator new

@@ -7,6 +7,17 @@
 // a third of its CPU faulting in its frames and analysis arrays. A 2 MiB page is one fault.
 #include <cstddef>
 
+// Defined where AddressSanitizer supplies operator new and delete: swell's own operator new
+// (impls/src/large_allocations_new.cpp) is then left out.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SWELL_SANITIZED_ALLOCATIONS 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define SWELL_SANITIZED_ALLOCATIONS 1
+#endif
+
 namespace swell::impls {
 
 inline constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;
