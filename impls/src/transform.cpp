@@ -6,7 +6,7 @@
 #include <new>
 #include <sstream>
 
-#include "swell/impls/huge_pages.hpp"
+#include "swell/reference/huge_pages.hpp"
 
 namespace swell::impls {
 
@@ -162,17 +162,13 @@ void Backend::validate(const TransformSpec& spec) const {
 
 HostBuffer::HostBuffer(std::size_t bytes, Fill fill) : bytes_(bytes) {
   // Arrays of 2 MiB and more are placed on 2 MiB boundaries and offered transparent huge pages
-  // (huge_pages.hpp): a column pass steps a row (up to 64 KB) per sample, a new 4 KiB page — and
-  // a TLB miss — every time, one 2 MiB page holds 32…512 rows; and one fault instead of 512.
-  // Smaller ones on a cache line (aligned_alloc needs a size that is a multiple of it).
-  std::size_t rounded = 0;
-  if (bytes >= kHugePageBytes) {
-    rounded = (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
-    data_ = allocate_on_huge_pages(bytes);
-  } else {
-    rounded = std::max<std::size_t>(64, (bytes + 63) / 64 * 64);
-    data_ = std::aligned_alloc(64, rounded);
-  }
+  // (reference/huge_pages.hpp): a column pass steps a row (up to 64 KB) per sample, a new 4 KiB
+  // page — and a TLB miss — every time, one 2 MiB page holds 32…512 rows; and one fault instead
+  // of 512. Smaller ones on a cache line (aligned_alloc needs a size that is a multiple of it).
+  const bool huge = bytes >= reference::kHugePageBytes;
+  const std::size_t rounded = huge ? reference::round_to_huge_pages(bytes)
+                                   : std::max<std::size_t>(64, (bytes + 63) / 64 * 64);
+  data_ = huge ? reference::allocate_on_huge_pages(bytes) : std::aligned_alloc(64, rounded);
   if (!data_) throw std::bad_alloc();
   if (fill == Fill::zero) std::memset(data_, 0, rounded);
 }

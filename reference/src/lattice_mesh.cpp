@@ -10,10 +10,7 @@
 
 #include "integer_arithmetic.hpp"
 #include "swell/reference/errors.hpp"
-
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
+#include "swell/reference/huge_pages.hpp"
 
 namespace swell::reference {
 namespace {
@@ -59,13 +56,7 @@ SuperbaseVector negated(const SuperbaseVector& v, std::int64_t n) {
 template <class T>
 void reserve_large(std::vector<T>& v, std::size_t count) {
   v.reserve(count);
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
-  const auto begin = reinterpret_cast<std::uintptr_t>(v.data());
-  const std::uintptr_t first = (begin + kHuge - 1) & ~(kHuge - 1);
-  const std::uintptr_t last = (begin + count * sizeof(T)) & ~(kHuge - 1);
-  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-#endif
+  advise_huge_pages(v.data(), count * sizeof(T));
 }
 
 void validate(std::int64_t points, std::int64_t g0, std::int64_t g1, double lx, double ly) {

@@ -1,6 +1,6 @@
-// Large arrays on transparent huge pages (swell/impls/huge_pages.hpp): the allocation helper,
+// Large arrays on transparent huge pages (swell/reference/huge_pages.hpp): the allocation helper,
 // HostBuffer, and the global operator new that swell's programs link
-// (impls/src/large_allocations_new.cpp; this test program links it as every other does).
+// (reference/src/large_allocations_new.cpp; this test program links it as every other does).
 #include <gtest/gtest.h>
 
 #include <complex>
@@ -11,20 +11,20 @@
 #include <new>
 #include <vector>
 
-#include "swell/impls/huge_pages.hpp"
+#include "swell/reference/huge_pages.hpp"
 #include "swell/impls/transform.hpp"
 
 namespace {
 
-using swell::impls::kHugePageBytes;
+using swell::reference::kHugePageBytes;
 
 bool on_huge_page_boundary(const void* p) {
   return reinterpret_cast<std::uintptr_t>(p) % kHugePageBytes == 0;
 }
 
-TEST(HugePages, AllocationsStartOnA2MiBBoundaryAndEveryByteIsWritable) {
+TEST(HugePages, AllocationsStartOnA2MiBBoundaryAndTheWholeRoundedSizeIsTheCallers) {
   for (std::size_t bytes : {kHugePageBytes, kHugePageBytes + 1, 3 * kHugePageBytes - 8}) {
-    void* data = swell::impls::allocate_on_huge_pages(bytes);
+    void* data = swell::reference::allocate_on_huge_pages(bytes);
     ASSERT_NE(data, nullptr) << bytes;
     EXPECT_TRUE(on_huge_page_boundary(data)) << bytes;
     // The whole rounded size is the caller's (madvise covers it): write its last byte too.
@@ -36,8 +36,8 @@ TEST(HugePages, AllocationsStartOnA2MiBBoundaryAndEveryByteIsWritable) {
 
 TEST(HugePages, AnImpossibleSizeIsNullNotAWrappedSmallBlock) {
   // SIZE_MAX rounded up to 2 MiB wraps around to 0: must not become a tiny allocation.
-  EXPECT_EQ(swell::impls::allocate_on_huge_pages(std::numeric_limits<std::size_t>::max()), nullptr);
-  EXPECT_EQ(swell::impls::allocate_on_huge_pages(std::numeric_limits<std::size_t>::max() / 2), nullptr);
+  EXPECT_EQ(swell::reference::allocate_on_huge_pages(std::numeric_limits<std::size_t>::max()), nullptr);
+  EXPECT_EQ(swell::reference::allocate_on_huge_pages(std::numeric_limits<std::size_t>::max() / 2), nullptr);
 }
 
 TEST(HugePages, HostBuffersOf2MiBAndMoreAreOnHugePageBoundariesAndZeroed) {

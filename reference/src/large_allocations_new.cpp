@@ -1,6 +1,6 @@
 // The global operator new of swell's own programs (the `swell` command, the benchmarks, the
 // test suites — not the libraries, whose users keep their allocator): allocations of 2 MiB
-// and more go on transparent huge pages (swell/impls/huge_pages.hpp), everything smaller to
+// and more go on transparent huge pages (swell/reference/huge_pages.hpp), everything smaller to
 // malloc as before. Frames, spectra, wave series and the analysis's arrays are std::vectors of
 // 2 MiB and more at 512², and each is written once soon after it is allocated: in 4 KiB pages
 // their first touch cost the gate (gate/512/64) ~35 000 page faults, about 0.5 s of CPU on the
@@ -12,13 +12,13 @@
 #include <cstdlib>
 #include <new>
 
-#include "swell/impls/huge_pages.hpp"
+#include "swell/reference/huge_pages.hpp"
 
 #ifndef SWELL_SANITIZED_ALLOCATIONS
 void* operator new(std::size_t bytes) {
   if (bytes == 0) bytes = 1;
   for (;;) {
-    void* data = bytes >= swell::impls::kHugePageBytes ? swell::impls::allocate_on_huge_pages(bytes)
+    void* data = bytes >= swell::reference::kHugePageBytes ? swell::reference::allocate_on_huge_pages(bytes)
                                                       : std::malloc(bytes);
     if (data) return data;
     // What the standard asks of operator new when memory runs out: the new_handler, or bad_alloc.
