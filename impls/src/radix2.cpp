@@ -196,28 +196,17 @@ inline Vec<double> permute2(Vec<double> a, __m512i index, Vec<double> b) {
   return (Vec<double>)_mm512_permutex2var_pd((__m512d)a, index, (__m512d)b);
 }
 
-// Index vectors for two-source permutes (sources a, b; b's lanes numbered L … 2L − 1).
+// Index vectors for the two-source permutes between interleaved complex and split re / im
+// (sources a, b; b's lanes numbered L … 2L − 1).
 template <typename T>
 struct Shuffles {
   static constexpr int L = kLanes<T>;
   using Index = std::conditional_t<sizeof(T) == 4, int, long long>;
-  static constexpr int kSteps = sizeof(T) == 4 ? 4 : 3;  // log2 L
-  // In-register transpose: step s swaps the off-diagonal blocks of size b = L >> (s + 1)
-  // between vectors i and i + b.
-  alignas(64) Index lo[kSteps][L]{};
-  alignas(64) Index hi[kSteps][L]{};
   // Interleaved complex pairs (a, b) ↔ split re / im.
   alignas(64) Index even[L]{}, odd[L]{};    // re from a,b = [re im re im …]; im likewise
   alignas(64) Index low[L]{}, high[L]{};    // re, im → first / second half interleaved
 
   constexpr Shuffles() {
-    for (int s = 0; s < kSteps; ++s) {
-      const int b = L >> (s + 1);
-      for (int p = 0; p < L; ++p) {
-        lo[s][p] = (p & b) ? L + p - b : p;
-        hi[s][p] = (p & b) ? L + p : p + b;
-      }
-    }
     for (int p = 0; p < L; ++p) {
       even[p] = 2 * p;
       odd[p] = 2 * p + 1;
@@ -232,25 +221,77 @@ constexpr Shuffles<T> kShuffles{};
 inline __m512i index_vector(const int* p) { return _mm512_load_si512(p); }
 inline __m512i index_vector(const long long* p) { return _mm512_load_si512(p); }
 
-// v[i][p] ← v[p][i]: log2 L steps of L two-source permutes.
-template <typename T>
-inline void transpose(Vec<T> (&v)[kLanes<T>]) {
-  constexpr int L = kLanes<T>;
-  const auto& tab = kShuffles<T>;
+// The shuffles of the transposes, written with full masks: GCC 12's unmasked intrinsics pass
+// _mm512_undefined_*() through, which -Wmaybe-uninitialized reports (GCC bug 105593). A full
+// mask compiles to the plain instruction.
+inline __m512 unpack_lo(__m512 a, __m512 b) { return _mm512_mask_unpacklo_ps(a, 0xFFFF, a, b); }
+inline __m512 unpack_hi(__m512 a, __m512 b) { return _mm512_mask_unpackhi_ps(a, 0xFFFF, a, b); }
+inline __m512d unpack_lo(__m512d a, __m512d b) { return _mm512_mask_unpacklo_pd(a, 0xFF, a, b); }
+inline __m512d unpack_hi(__m512d a, __m512d b) { return _mm512_mask_unpackhi_pd(a, 0xFF, a, b); }
+// 128-bit blocks: (a0, a2, b0, b2) for kEvenBlocks, (a1, a3, b1, b3) for kOddBlocks.
+constexpr int kEvenBlocks = 0x88, kOddBlocks = 0xDD;
+template <int kBlocks>
+inline __m512 blocks(__m512 a, __m512 b) { return _mm512_mask_shuffle_f32x4(a, 0xFFFF, a, b, kBlocks); }
+template <int kBlocks>
+inline __m512d blocks(__m512d a, __m512d b) { return _mm512_mask_shuffle_f64x2(a, 0xFF, a, b, kBlocks); }
+
+// v[i][p] ← v[p][i]: unpacks within 128-bit blocks, then two steps of whole-block shuffles.
+// As many instructions as log2 L steps of two-source permutes (64 for floats, 24 for
+// doubles), but cheaper ones, and no index vectors held in registers: the row pass at 256²
+// took 6–8 % less (docs/performance.md §3).
+inline void transpose(Vec<float> (&v)[16]) {
+  __m512 t[16], u[16];
+  // t[2i + j], block k: columns 4k + 2j, 4k + 2j + 1 of rows 2i, 2i + 1, interleaved.
+#pragma GCC unroll 8
+  for (int i = 0; i < 8; ++i) {
+    t[2 * i] = unpack_lo((__m512)v[2 * i], (__m512)v[2 * i + 1]);
+    t[2 * i + 1] = unpack_hi((__m512)v[2 * i], (__m512)v[2 * i + 1]);
+  }
+  // u[4g + j], block k: column 4k + j of rows 4g … 4g + 3.
 #pragma GCC unroll 4
-  for (int s = 0; s < Shuffles<T>::kSteps; ++s) {
-    const int b = L >> (s + 1);
-    const __m512i lo = index_vector(tab.lo[s]), hi = index_vector(tab.hi[s]);
-#pragma GCC unroll 16
-    for (int i = 0; i < L; ++i) {
-      if (i & b) continue;
-      const Vec<T> x = permute2(v[i], lo, v[i + b]);
-      const Vec<T> y = permute2(v[i], hi, v[i + b]);
-      v[i] = x;
-      v[i + b] = y;
-    }
+  for (int g = 0; g < 4; ++g) {
+    const __m512d a = _mm512_castps_pd(t[4 * g]), b = _mm512_castps_pd(t[4 * g + 1]);
+    const __m512d c = _mm512_castps_pd(t[4 * g + 2]), d = _mm512_castps_pd(t[4 * g + 3]);
+    u[4 * g] = _mm512_castpd_ps(unpack_lo(a, c));
+    u[4 * g + 1] = _mm512_castpd_ps(unpack_hi(a, c));
+    u[4 * g + 2] = _mm512_castpd_ps(unpack_lo(b, d));
+    u[4 * g + 3] = _mm512_castpd_ps(unpack_hi(b, d));
+  }
+  // Column 4k + j: block k of u[j], u[4 + j], u[8 + j], u[12 + j].
+#pragma GCC unroll 4
+  for (int j = 0; j < 4; ++j) {
+    const __m512 even_low = blocks<kEvenBlocks>(u[j], u[4 + j]);
+    const __m512 odd_low = blocks<kOddBlocks>(u[j], u[4 + j]);
+    const __m512 even_high = blocks<kEvenBlocks>(u[8 + j], u[12 + j]);
+    const __m512 odd_high = blocks<kOddBlocks>(u[8 + j], u[12 + j]);
+    v[j] = (Vec<float>)blocks<kEvenBlocks>(even_low, even_high);
+    v[4 + j] = (Vec<float>)blocks<kEvenBlocks>(odd_low, odd_high);
+    v[8 + j] = (Vec<float>)blocks<kOddBlocks>(even_low, even_high);
+    v[12 + j] = (Vec<float>)blocks<kOddBlocks>(odd_low, odd_high);
   }
 }
+inline void transpose(Vec<double> (&v)[8]) {
+  __m512d t[8];
+  // t[2i + j], block k: column 2k + j of rows 2i, 2i + 1.
+#pragma GCC unroll 4
+  for (int i = 0; i < 4; ++i) {
+    t[2 * i] = unpack_lo((__m512d)v[2 * i], (__m512d)v[2 * i + 1]);
+    t[2 * i + 1] = unpack_hi((__m512d)v[2 * i], (__m512d)v[2 * i + 1]);
+  }
+  // Column 2k + j: block k of t[j], t[2 + j], t[4 + j], t[6 + j].
+#pragma GCC unroll 2
+  for (int j = 0; j < 2; ++j) {
+    const __m512d even_low = blocks<kEvenBlocks>(t[j], t[2 + j]);
+    const __m512d odd_low = blocks<kOddBlocks>(t[j], t[2 + j]);
+    const __m512d even_high = blocks<kEvenBlocks>(t[4 + j], t[6 + j]);
+    const __m512d odd_high = blocks<kOddBlocks>(t[4 + j], t[6 + j]);
+    v[j] = (Vec<double>)blocks<kEvenBlocks>(even_low, even_high);
+    v[2 + j] = (Vec<double>)blocks<kEvenBlocks>(odd_low, odd_high);
+    v[4 + j] = (Vec<double>)blocks<kOddBlocks>(even_low, even_high);
+    v[6 + j] = (Vec<double>)blocks<kOddBlocks>(odd_low, odd_high);
+  }
+}
+
 
 template <typename T>
 inline Vec<T> load_vec(const std::complex<T>* p) {
@@ -291,7 +332,7 @@ struct RowsIO {
     Vec<T> v[L];
 #pragma GCC unroll 16
     for (int l = 0; l < L; ++l) v[l] = load_vec(src + l * n + k);
-    transpose<T>(v);
+    transpose(v);
 #pragma GCC unroll 8
     for (int t = 0; t < kGroup; ++t) x[t] = {v[2 * t], v[2 * t + 1]};
   }
@@ -302,7 +343,7 @@ struct RowsIO {
       v[2 * t] = x[t].re;
       v[2 * t + 1] = x[t].im;
     }
-    transpose<T>(v);
+    transpose(v);
 #pragma GCC unroll 16
     for (int l = 0; l < L; ++l) store_vec(dst + l * n + k, v[l]);
   }
