@@ -235,18 +235,34 @@ inline __m512 blocks(__m512 a, __m512 b) { return _mm512_mask_shuffle_f32x4(a, 0
 template <int kBlocks>
 inline __m512d blocks(__m512d a, __m512d b) { return _mm512_mask_shuffle_f64x2(a, 0xFF, a, b, kBlocks); }
 
+// The 4 × 4 transpose of 128-bit blocks: result b holds block b of a0, a1, a2, a3 in that order.
+template <typename V>
+inline std::array<V, 4> transpose_blocks(V a0, V a1, V a2, V a3) {
+  const V even_low = blocks<kEvenBlocks>(a0, a1), odd_low = blocks<kOddBlocks>(a0, a1);
+  const V even_high = blocks<kEvenBlocks>(a2, a3), odd_high = blocks<kOddBlocks>(a2, a3);
+  return {blocks<kEvenBlocks>(even_low, even_high), blocks<kEvenBlocks>(odd_low, odd_high),
+          blocks<kOddBlocks>(even_low, even_high), blocks<kOddBlocks>(odd_low, odd_high)};
+}
+
+// The first step of a transpose: rows 2i and 2i + 1 unpacked into t[2i] (low halves of each
+// 128-bit block) and t[2i + 1] (high halves).
+template <typename W, typename V, int L>
+inline void unpack_row_pairs(const W (&v)[L], V (&t)[L]) {
+#pragma GCC unroll 8
+  for (int i = 0; i < L / 2; ++i) {
+    t[2 * i] = unpack_lo((V)v[2 * i], (V)v[2 * i + 1]);
+    t[2 * i + 1] = unpack_hi((V)v[2 * i], (V)v[2 * i + 1]);
+  }
+}
+
 // v[i][p] ← v[p][i]: unpacks within 128-bit blocks, then two steps of whole-block shuffles.
 // As many instructions as log2 L steps of two-source permutes (64 for floats, 24 for
-// doubles), but cheaper ones, and no index vectors held in registers: the row pass at 256²
-// took 6–8 % less (docs/performance.md §3).
+// doubles), but cheaper ones, and no index vectors held in registers: the row pass took 9 %
+// less at fp32 256², 16 % at fp64 512², the same elsewhere (docs/performance.md §3).
 inline void transpose(Vec<float> (&v)[16]) {
   __m512 t[16], u[16];
   // t[2i + j], block k: columns 4k + 2j, 4k + 2j + 1 of rows 2i, 2i + 1, interleaved.
-#pragma GCC unroll 8
-  for (int i = 0; i < 8; ++i) {
-    t[2 * i] = unpack_lo((__m512)v[2 * i], (__m512)v[2 * i + 1]);
-    t[2 * i + 1] = unpack_hi((__m512)v[2 * i], (__m512)v[2 * i + 1]);
-  }
+  unpack_row_pairs(v, t);
   // u[4g + j], block k: column 4k + j of rows 4g … 4g + 3.
 #pragma GCC unroll 4
   for (int g = 0; g < 4; ++g) {
@@ -260,35 +276,19 @@ inline void transpose(Vec<float> (&v)[16]) {
   // Column 4k + j: block k of u[j], u[4 + j], u[8 + j], u[12 + j].
 #pragma GCC unroll 4
   for (int j = 0; j < 4; ++j) {
-    const __m512 even_low = blocks<kEvenBlocks>(u[j], u[4 + j]);
-    const __m512 odd_low = blocks<kOddBlocks>(u[j], u[4 + j]);
-    const __m512 even_high = blocks<kEvenBlocks>(u[8 + j], u[12 + j]);
-    const __m512 odd_high = blocks<kOddBlocks>(u[8 + j], u[12 + j]);
-    v[j] = (Vec<float>)blocks<kEvenBlocks>(even_low, even_high);
-    v[4 + j] = (Vec<float>)blocks<kEvenBlocks>(odd_low, odd_high);
-    v[8 + j] = (Vec<float>)blocks<kOddBlocks>(even_low, even_high);
-    v[12 + j] = (Vec<float>)blocks<kOddBlocks>(odd_low, odd_high);
+    const auto k = transpose_blocks(u[j], u[4 + j], u[8 + j], u[12 + j]);
+    for (int b = 0; b < 4; ++b) v[4 * b + j] = (Vec<float>)k[b];
   }
 }
 inline void transpose(Vec<double> (&v)[8]) {
   __m512d t[8];
   // t[2i + j], block k: column 2k + j of rows 2i, 2i + 1.
-#pragma GCC unroll 4
-  for (int i = 0; i < 4; ++i) {
-    t[2 * i] = unpack_lo((__m512d)v[2 * i], (__m512d)v[2 * i + 1]);
-    t[2 * i + 1] = unpack_hi((__m512d)v[2 * i], (__m512d)v[2 * i + 1]);
-  }
+  unpack_row_pairs(v, t);
   // Column 2k + j: block k of t[j], t[2 + j], t[4 + j], t[6 + j].
 #pragma GCC unroll 2
   for (int j = 0; j < 2; ++j) {
-    const __m512d even_low = blocks<kEvenBlocks>(t[j], t[2 + j]);
-    const __m512d odd_low = blocks<kOddBlocks>(t[j], t[2 + j]);
-    const __m512d even_high = blocks<kEvenBlocks>(t[4 + j], t[6 + j]);
-    const __m512d odd_high = blocks<kOddBlocks>(t[4 + j], t[6 + j]);
-    v[j] = (Vec<double>)blocks<kEvenBlocks>(even_low, even_high);
-    v[2 + j] = (Vec<double>)blocks<kEvenBlocks>(odd_low, odd_high);
-    v[4 + j] = (Vec<double>)blocks<kOddBlocks>(even_low, even_high);
-    v[6 + j] = (Vec<double>)blocks<kOddBlocks>(odd_low, odd_high);
+    const auto k = transpose_blocks(t[j], t[2 + j], t[4 + j], t[6 + j]);
+    for (int b = 0; b < 4; ++b) v[2 * b + j] = (Vec<double>)k[b];
   }
 }
 
