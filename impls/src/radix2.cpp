@@ -292,7 +292,6 @@ inline void transpose(Vec<double> (&v)[8]) {
   }
 }
 
-
 template <typename T>
 inline Vec<T> load_vec(const std::complex<T>* p) {
   Vec<T> v;
