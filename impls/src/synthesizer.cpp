@@ -17,6 +17,7 @@
 
 #include "device_frame.hpp"
 #include "swell/reference/errors.hpp"
+#include "swell/impls/phasor.hpp"
 #include "swell/reference/phase.hpp"
 #include "swell/reference/wave_noise.hpp"
 
@@ -133,48 +134,6 @@ std::vector<std::complex<double>> initial_amplitudes(const OceanCase& ocean_case
 
 namespace {
 
-// sin x and cos x to about 1 ulp for the reduced phases |x| ≤ π + 2⁻² of
-// reference::reduced_phase, in plain arithmetic that the compiler vectorizes: glibc's sincos is
-// a scalar call per phase (28% of a 1024² fp32 frame before this, docs/synthesis.md); glibc
-// declares its vector variants (libmvec) only under -ffast-math, and their scalar loop tails
-// would round differently from the vector body. Cody–Waite reduction x = q·π/2 + r with π/2
-// split as p1 + p2 + p3 (fdlibm's pio2_1, pio2_2, pio2_2t; q·p1 and q·p2 are exact for small q
-// and x − q·p1 is exact by Sterbenz's lemma), then fdlibm's __kernel_sin and __kernel_cos
-// minimax polynomials on |r| ≤ π/4. The large part of ωt has already been taken out exactly by
-// reduced_phase (reference/phase.hpp), so no phase of any valid case falls back to std::sin.
-[[gnu::always_inline]] inline void sin_cos(double x, double& sin_x, double& cos_x) {
-  constexpr double two_over_pi = 6.36619772367581382433e-01;
-  constexpr double p1 = 1.57079632673412561417e+00;
-  constexpr double p2 = 6.07710050630396597660e-11;
-  constexpr double p3 = 2.02226624879595063154e-21;
-  constexpr double round_shift = 0x1.8p52;  // x + 1.5·2⁵² rounds x to an integer, in the low bits
-  const double shifted = x * two_over_pi + round_shift;
-  const double q = shifted - round_shift;
-  const auto quadrant = std::bit_cast<std::int64_t>(shifted);  // q mod 4 in its two low bits
-  const double r = ((x - q * p1) - q * p2) - q * p3;
-  const double z = r * r;
-  const double sin_r =
-      r + r * z *
-              (-1.66666666666666324348e-01 +
-               z * (8.33333333332248946124e-03 +
-                    z * (-1.98412698298579493134e-04 +
-                         z * (2.75573137070700676789e-06 +
-                              z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10)))));
-  const double cos_r =
-      1.0 - 0.5 * z +
-      z * z *
-          (4.16666666666666019037e-02 +
-           z * (-1.38888888888741095749e-03 +
-                z * (2.48015872894767294178e-05 +
-                     z * (-2.75573143513906633035e-07 +
-                          z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
-  // sin(qπ/2 + r), cos(qπ/2 + r) for q mod 4 = 0, 1, 2, 3: (s, c), (c, −s), (−s, −c), (−c, s).
-  const bool odd = quadrant & 1;
-  const double s = odd ? cos_r : sin_r, c = odd ? sin_r : cos_r;
-  sin_x = (quadrant & 2) ? -s : s;
-  cos_x = ((quadrant + 1) & 2) ? -c : c;
-}
-
 // The per-row kernels are compiled for three instruction sets and picked when the program
 // loads (GCC function multiversioning): swell builds without -march, and with 4 or 8 doubles
 // a vector the assembly is several times cheaper. Other compilers get the baseline build.
@@ -222,8 +181,7 @@ struct RowTask {
   Real* out = nullptr;         // row j of the first spectrum (interleaved re, im)
   Real* out_mirror = nullptr;  // pairs: row (ny − j) mod ny of the first spectrum
   std::size_t plane = 0;       // Reals from one spectrum to the next
-  // Scratch of end − begin entries, indexed from begin.
-  double *cos_phase = nullptr, *sin_phase = nullptr;
+  // Scratch of end − begin entries, indexed from begin: h̃ of the row, for its mirror.
   Real *h_re = nullptr, *h_im = nullptr;
   const Real* field_scale = nullptr;  // [kRealFields] powers of two (State::field_scale)
 };
@@ -238,23 +196,24 @@ struct FieldSpectra {
   Real re[kRealFields], im[kRealFields];
 };
 
+// The fields' power-of-two scales (State::field_scale) ride on the multipliers: m·scale is
+// exact, and so (m·scale)·h̃ rounds to the same value as (m·h̃)·scale, barring overflow and
+// underflow — 8 multiplications an entry instead of 16, the same spectra bit for bit.
 template <typename Real>
 [[gnu::always_inline]] inline FieldSpectra<Real> field_spectra(Real hr, Real hi, Real kx, Real ky,
                                                                Real lk, const Real* scale) {
   const Real lkx = lk * kx, lky = lk * ky;
+  const Real m1 = kx * scale[1], m2 = ky * scale[2], m3 = lkx * scale[3], m4 = lky * scale[4];
+  const Real m5 = -lkx * kx * scale[5], m6 = -lky * ky * scale[6], m7 = -lkx * ky * scale[7];
   FieldSpectra<Real> f;
-  f.re[0] = hr;              f.im[0] = hi;
-  f.re[1] = -kx * hi;        f.im[1] = kx * hr;
-  f.re[2] = -ky * hi;        f.im[2] = ky * hr;
-  f.re[3] = -lkx * hi;       f.im[3] = lkx * hr;
-  f.re[4] = -lky * hi;       f.im[4] = lky * hr;
-  f.re[5] = -lkx * kx * hr;  f.im[5] = -lkx * kx * hi;
-  f.re[6] = -lky * ky * hr;  f.im[6] = -lky * ky * hi;
-  f.re[7] = -lkx * ky * hr;  f.im[7] = -lkx * ky * hi;
-  for (int r = 0; r < kRealFields; ++r) {
-    f.re[r] *= scale[r];
-    f.im[r] *= scale[r];
-  }
+  f.re[0] = hr * scale[0];  f.im[0] = hi * scale[0];
+  f.re[1] = -m1 * hi;       f.im[1] = m1 * hr;
+  f.re[2] = -m2 * hi;       f.im[2] = m2 * hr;
+  f.re[3] = -m3 * hi;       f.im[3] = m3 * hr;
+  f.re[4] = -m4 * hi;       f.im[4] = m4 * hr;
+  f.re[5] = m5 * hr;        f.im[5] = m5 * hi;
+  f.re[6] = m6 * hr;        f.im[6] = m6 * hi;
+  f.re[7] = m7 * hr;        f.im[7] = m7 * hi;
   return f;
 }
 
@@ -270,34 +229,31 @@ template <typename Real>
 }
 
 // PerColumnKy: a lattice's row, whose classes each have their own ky (a separate
-// instantiation, so that the grids' loops stay as they were).
+// instantiation, so that the grids' loops stay as they were). The phases are computed in the
+// loop that uses them (no scratch arrays of cos and sin to write and read back).
 template <typename Real, bool PerColumnKy>
 [[gnu::always_inline]] inline void assemble_row_body(const RowTask<Real>& task) {
   const int width = task.width;
   const int begin = task.begin, end = task.end;
-  // The scratch arrays are indexed from `begin`.
-  double* __restrict c = task.cos_phase - begin;
-  double* __restrict s = task.sin_phase - begin;
   const double* __restrict omega = task.omega;
   const double t = task.t;
-#pragma omp simd
-  for (int i = begin; i < end; ++i) sin_cos(reference::reduced_phase(omega[i], t), s[i], c[i]);
   const Real* __restrict a_re = task.a_re;
   const Real* __restrict a_im = task.a_im;
   const Real* __restrict b_re = task.b_re;
   const Real* __restrict b_im = task.b_im;
   const Real* __restrict lk = task.lambda_over_k;
   const Real* __restrict kx = task.kx;
+  // The scratch array is indexed from `begin`.
   Real* __restrict h_re = task.h_re - begin;
   Real* __restrict h_im = task.h_im - begin;
   Real* __restrict out = task.out;
   const std::size_t plane = task.plane;
   const Real ky = task.ky;
   const Real* __restrict ky_column = task.ky_column;
-  // h̃ = a e^(−iωt) + b e^(+iωt) (in Real: c and s are rounded once), then the fields at k:
-  // columns 0 … nx/2 of row j.
+  // h̃ = a e^(−iωt) + b e^(+iωt), then the fields at k: columns 0 … nx/2 of row j.
   const auto wave = [&](int i, Real& hr, Real& hi) {
-    const Real cr = Real(c[i]), sr = Real(s[i]);
+    Real cr, sr;
+    phasor(omega[i], t, cr, sr);
     hr = (a_re[i] + b_re[i]) * cr + (a_im[i] - b_im[i]) * sr;
     hi = (a_im[i] + b_im[i]) * cr - (a_re[i] - b_re[i]) * sr;
   };
@@ -390,15 +346,19 @@ template <typename Real>
     const Real* v = task.inverse_scale;
 #pragma omp simd reduction(+ : probe)
     for (std::size_t p = task.begin; p < task.end; ++p) {
-      h[p] = p0[2 * p] * v[0];
-      sx[p] = p0[2 * p + 1] * v[1];
-      sy[p] = p1[2 * p] * v[2];
-      dx[p] = p1[2 * p + 1] * v[3];
-      dy[p] = p2[2 * p] * v[4];
+      const Real h_p = p0[2 * p] * v[0], sx_p = p0[2 * p + 1] * v[1];
+      const Real sy_p = p1[2 * p] * v[2], dx_p = p1[2 * p + 1] * v[3];
+      const Real dy_p = p2[2 * p] * v[4];
       const Real dxx = p2[2 * p + 1] * v[5], dyy = p3[2 * p] * v[6], dxy = p3[2 * p + 1] * v[7];
-      jacobian[p] = (Real(1) + dxx) * (Real(1) + dyy) - dxy * dxy;
-      probe += Real(0) * h[p] + Real(0) * sx[p] + Real(0) * sy[p] + Real(0) * dx[p] +
-               Real(0) * dy[p] + Real(0) * jacobian[p];
+      const Real j_p = (Real(1) + dxx) * (Real(1) + dyy) - dxy * dxy;
+      h[p] = h_p;
+      sx[p] = sx_p;
+      sy[p] = sy_p;
+      dx[p] = dx_p;
+      dy[p] = dy_p;
+      jacobian[p] = j_p;
+      probe += Real(0) * h_p + Real(0) * sx_p + Real(0) * sy_p + Real(0) * dx_p +
+               Real(0) * dy_p + Real(0) * j_p;
     }
   } else {
     const Real* v = task.inverse_scale;
@@ -1011,7 +971,6 @@ void Synthesizer::State::assemble(double t) const {
   const int columns_per_task = lattice ? std::min(half_columns, kLatticeBlock) : half_columns;
 #pragma omp parallel num_threads(options.threads)
   {
-    std::vector<double> phase(2 * std::size_t(columns_per_task));
     std::vector<Real> h(2 * std::size_t(columns_per_task));
     RowTask<Real> task;
     task.width = half_columns;
@@ -1022,8 +981,6 @@ void Synthesizer::State::assemble(double t) const {
     task.t = t;
     task.kx = kxs.data();
     task.plane = plane;
-    task.cos_phase = phase.data();
-    task.sin_phase = phase.data() + columns_per_task;
     task.h_re = h.data();
     task.h_im = h.data() + columns_per_task;
     task.field_scale = scales<Real>(false);
