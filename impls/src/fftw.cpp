@@ -393,14 +393,18 @@ class FftwBackend final : public Backend {
   }
 
   // Threads that pay (issue 17): FFTW's threads cost about 0.1 ms a call to wake and join, so
-  // below 2¹⁸ points (512²) two threads were slower than one — measured on the 2-core
-  // reference VM, fp32 c2c inverse, medians of 5: 64² 0.108 against 0.005 ms, 128² 0.127
-  // against 0.029, 256² 0.204 against 0.159; from 512² they pay (0.54 against 0.87 ms, 1024²
-  // 2.78 against 6.88). Smaller transforms are planned with one thread.
-  static constexpr double kThreadedFromPoints = 512.0 * 512.0;
+  // below 4 MiB of complex data (512² in fp64, 1024×512 in fp32) two threads were slower than
+  // one — measured on the 2-core reference VM, c2c inverse, FFTW_MEASURE: fp32 64² 0.108
+  // against 0.005 ms, 128² 0.127 against 0.029, 256² 0.204 against 0.159; fp32 512² (2 MiB)
+  // paid in one session (0.54 against 0.87 ms) and lost in a later one (2026-12-04: 0.682
+  // against 0.628 ms, three benchmark runs alike), when fp64 512² (4 MiB) took 0.77 against
+  // 0.99, fp32 1024×512 0.99 against 1.47, 512×1024 1.09 against 1.39 and 1024² 1.90 against
+  // 3.58. Smaller transforms are planned with one thread.
+  static constexpr double kThreadedFromBytes = 4.0 * 1024 * 1024;
   int threads_for(const TransformSpec& spec) const {
     const double points = double(spec.nx) * double(spec.rank() == 1 ? 1 : spec.ny) * spec.howmany;
-    return options_.threads > 1 && points < kThreadedFromPoints ? 1 : options_.threads;
+    const double bytes = points * 2 * double(real_size(spec.precision));
+    return options_.threads > 1 && bytes < kThreadedFromBytes ? 1 : options_.threads;
   }
 
  private:

@@ -595,13 +595,21 @@ void transform_block(const IO& io, const Axis<T>& axis, bool inverse) {
   }
 }
 
-// Threads pay from 64² points per pass (issue 17: never slower with 2 threads than with 1).
-// Measured on the 2-core reference VM, fp32 c2c inverse, medians of 2001, one thread against
-// two: 8² 0.0013 / 0.0021 ms, 16² 0.0019 / 0.0025 (the team's wake-up and join cost more than
-// a second thread saves; below 16 rows there is one block per pass), 32² 0.0033 / 0.0030 in
-// one run and 0.0021 / 0.0067 in the next (a wash at best), 64² 0.0090 / 0.0069 and 0.0089 /
-// 0.0071, 256² 0.121 / 0.076, 1024² 4.36 / 2.42.
-constexpr std::size_t kThreadedFromPoints = 64 * 64;
+// When the threads pay (issue 17: never slower with 2 threads than with 1). A pass is split by
+// blocks of L signals, each thread its share. A batch of 1-D rows (one pass) is split from 2¹⁵
+// points with ≥ 2 blocks a thread. A 2-D transform is split in both passes or in neither — the
+// row pass leaves each thread's rows in its own caches and the column pass reads every row, so
+// a threaded pass beside a serial one moves half the array between the cores for nothing — from
+// 2¹⁵ points, with ≥ 2 row blocks and ≥ 4 column blocks a thread (a column pass of few wide
+// blocks loses on its own). Measured on the 2-core reference VM (2026-12-04, fp32 c2c unless
+// marked, medians of 2001, µs one thread / two), with every pass from 64² threaded, the rule
+// before (set when the transposes were slower): 64² 7.5 / 10.9, fp64 64² 14.8 / 23.5, 128²
+// 21.0 / 22.4 in one hour and 20.7 / 14.7 in the next (the second core comes and goes on this
+// host), 32×1024 43.9 / 72.5 and 47.1 / 57.8, 64×512 42.4 / 47.2, fp64 128×256 80.5 / 95.2;
+// with one pass threaded and the other not, 128×256 42.1 / 47.6, fp64 128×256 83.1 / 117.1.
+constexpr std::size_t kThreadedFromPoints = std::size_t(1) << 15;
+constexpr int kThreadedFromRowBlocksPerThread = 2;
+constexpr int kThreadedFromColumnBlocksPerThread = 4;
 
 template <typename T>
 class Radix2Engine final : public detail::ComplexEngine<T> {
@@ -610,15 +618,21 @@ class Radix2Engine final : public detail::ComplexEngine<T> {
 
   Radix2Engine(int nx, int ny, int threads) : x_(nx), y_(ny), threads_(threads) {}
 
-  bool threaded(std::size_t points) const {
-    return threads_ > 1 && points >= kThreadedFromPoints;
+  // Whether a batch of `rows` 1-D rows, and a whole 2-D transform, run on the threads.
+  bool rows_threaded(int rows) const {
+    return threads_ > 1 && std::size_t(x_.n) * rows >= kThreadedFromPoints &&
+           rows / kL >= kThreadedFromRowBlocksPerThread * threads_;
+  }
+  bool two_d_threaded() const {
+    return rows_threaded(y_.n) && x_.n / kL >= kThreadedFromColumnBlocksPerThread * threads_;
   }
 
   // `rows` rows of length nx from src to dst (may alias).
-  void rows(const std::complex<T>* src, std::complex<T>* dst, int rows, bool inverse) const {
+  void rows(const std::complex<T>* src, std::complex<T>* dst, int rows, bool inverse,
+            bool threaded) const {
     const std::size_t nx = x_.n;
     const int blocks = rows / kL;
-#pragma omp parallel for num_threads(threads_) schedule(static) if (threaded(nx * rows))
+#pragma omp parallel for num_threads(threads_) schedule(static) if (threaded)
     for (int b = 0; b < blocks; ++b) {
       const std::size_t offset = std::size_t(b) * kL * nx;
       transform_block<T>(RowsIO<T>{src + offset, dst + offset, nx}, x_, inverse);
@@ -630,11 +644,10 @@ class Radix2Engine final : public detail::ComplexEngine<T> {
     }
   }
 
-  void columns(std::complex<T>* data, bool inverse) const {
+  void columns(std::complex<T>* data, bool inverse, bool threaded) const {
     const int nx = x_.n;
     const int blocks = nx / kL;
-#pragma omp parallel for num_threads(threads_) schedule(static) \
-    if (threaded(std::size_t(nx) * y_.n))
+#pragma omp parallel for num_threads(threads_) schedule(static) if (threaded)
     for (int b = 0; b < blocks; ++b) {
       transform_block<T>(ColumnsIO<T>{data + b * kL, std::size_t(nx), y_.n}, y_, inverse);
     }
@@ -646,8 +659,10 @@ class Radix2Engine final : public detail::ComplexEngine<T> {
 
   void c2c(const std::complex<T>* in, std::complex<T>* out, Direction d) const override {
     const bool inverse = d == Direction::inverse;
-    rows(in, out, y_.n, inverse);
-    if (y_.n > 1) columns(out, inverse);
+    if (y_.n == 1) return rows(in, out, 1, inverse, false);
+    const bool threaded = two_d_threaded();  // both passes or neither
+    rows(in, out, y_.n, inverse, threaded);
+    columns(out, inverse, threaded);
   }
 
   int nx() const { return x_.n; }
@@ -668,7 +683,7 @@ class Radix2Plan final : public Plan {
     if (s.kind == Kind::c2c && s.rank() == 1) {
       // A batch of 1-D transforms is one pass over all its rows.
       engine_.rows(static_cast<const std::complex<T>*>(in), static_cast<std::complex<T>*>(out),
-                   s.howmany, s.direction == Direction::inverse);
+                   s.howmany, s.direction == Direction::inverse, engine_.rows_threaded(s.howmany));
       return;
     }
     detail::run_via_complex<T>(s, engine_, in, out);
