@@ -16,8 +16,8 @@
 #include <fmt/format.h>
 
 #include "device_frame.hpp"
-#include "swell/reference/errors.hpp"
 #include "swell/impls/phasor.hpp"
+#include "swell/reference/errors.hpp"
 #include "swell/reference/phase.hpp"
 #include "swell/reference/wave_noise.hpp"
 
@@ -32,8 +32,8 @@ using reference::OceanCase;
 // (∂h/∂y, λDx), (λDy, λ∂Dx/∂x), (λ∂Dy/∂y, λ∂Dx/∂y). The last three only feed J.
 constexpr int kRealFields = 8;
 constexpr int kComplexPairs = kRealFields / 2;
-// Classes of a lattice's row per assembly task: the task's scratch (24 bytes a class in fp32,
-// 32 in fp64) stays in L1/L2.
+// Classes of a lattice's row per assembly task: the task's scratch (h̃, 8 bytes a class in fp32,
+// 16 in fp64) stays in L1/L2.
 constexpr int kLatticeBlock = 4096;
 
 // h̃0 of cascade `cascade` at its own wave index (n, m) on `grid`: the sea's Ψ times the band
@@ -198,7 +198,9 @@ struct FieldSpectra {
 
 // The fields' power-of-two scales (State::field_scale) ride on the multipliers: m·scale is
 // exact, and so (m·scale)·h̃ rounds to the same value as (m·h̃)·scale, barring overflow and
-// underflow — 8 multiplications an entry instead of 16, the same spectra bit for bit.
+// underflow — 8 multiplications an entry instead of 16. (The compiler's FMA contraction in
+// store_pairs then fuses other products than before: the frames moved in their last bits,
+// 2.9e-16 relative rms in fp64.)
 template <typename Real>
 [[gnu::always_inline]] inline FieldSpectra<Real> field_spectra(Real hr, Real hi, Real kx, Real ky,
                                                                Real lk, const Real* scale) {
