@@ -198,7 +198,7 @@ struct FieldSpectra {
 
 // The fields' power-of-two scales (State::field_scale) ride on the multipliers: m·scale is
 // exact, and so (m·scale)·h̃ rounds to the same value as (m·h̃)·scale, barring overflow and
-// underflow — 8 multiplications an entry instead of 16. (The compiler's FMA contraction in
+// underflow — 9 multiplications an entry instead of 16. (The compiler's FMA contraction in
 // store_pairs then fuses other products than before: the frames moved in their last bits,
 // 2.9e-16 relative rms in fp64.)
 template <typename Real>

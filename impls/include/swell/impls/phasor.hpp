@@ -65,34 +65,23 @@ template <typename Real>
   sin_phase = Real(s);
 }
 
-// The fp32 spectra's phasor, with half the double-precision operations: ωt = p + e exactly (as in
-// reference::reduced_phase), reduced in one step by q·π/2 with π/2 in three parts (the 2π of
-// reduced_phase over 4, so the same exactness argument holds: p − fl(q c1) by Sterbenz, fl(q c1)'s
-// error back from an FMA), so |r| ≤ π/4 + |e| to ≈ 1e-16 rad (|e| ≤ ulp(ωt)/2, below 10⁻⁸ rad
-// for ωt < 2²⁵). r is then rounded to float
-// (≤ 3e-8 rad at |r| ≤ π/4) and sin r, cos r evaluated in float with FreeBSD's __kernel_sindf
-// and __kernel_cosdf polynomials (msun k_sinf.c, k_cosf.c: |error| < 2⁻²⁷ on |r| ≤ π/4 in
-// exact arithmetic; their coefficients rounded to float move that by < 1e-8). Each value is
-// within about 1 ulp of float of the exact one (PhasorTest bounds it by 2⁻²³), against 0.5 ulp
-// for the double path rounded once; the fp32 transform after it adds log2(N) roundings of its
-// own. It makes the fp32 assembly about a fifth cheaper (docs/performance.md §5).
+// The fp32 spectra's phasor, with half the double-precision operations: ωt reduced exactly in
+// one step by q·π/2 (reference::reduce_phase_by<2>, reduced_phase's argument with 2π's parts
+// over 4), so |r| ≤ π/4 + |e| to ≈ 1e-16 rad (|e| ≤ ulp(ωt)/2, below 10⁻⁸ rad for ωt < 2²⁵).
+// r is then rounded to float (≤ 3e-8 rad at |r| ≤ π/4) and sin r, cos r evaluated in float with
+// FreeBSD's __kernel_sindf and __kernel_cosdf polynomials (msun k_sinf.c, k_cosf.c: |error| <
+// 2⁻²⁷ on |r| ≤ π/4 in exact arithmetic; their coefficients rounded to float move that by
+// < 1e-8). Each value is within about 1 ulp of float of the exact one (PhasorTest bounds it by
+// 2⁻²³), against 0.5 ulp for the double path rounded once; the fp32 transform after it adds
+// log2(N) roundings of its own. It makes the fp32 assembly about a fifth cheaper
+// (docs/performance.md §5).
 template <>
 [[gnu::always_inline]] inline void phasor<float>(double omega, double t, float& cos_phase,
                                                  float& sin_phase) {
-  constexpr double two_over_pi = 0x1.45f306dc9c883p-1;
-  constexpr double c1 = 0x1.921fb54442d18p+0;  // π/2 = c1 + c2 + c3
-  constexpr double c2 = 0x1.1a62633145c07p-54;
-  constexpr double c3 = -0x1.f1976b7ed8fbcp-110;
-  constexpr double round_shift = 0x1.8p52;
-  const double p = omega * t;
-  const double e = std::fma(omega, t, -p);
-  const double shifted = p * two_over_pi + round_shift;
-  const double q = shifted - round_shift;
+  double shifted;
+  const float r = float(reference::reduce_phase_by<2>(omega, t, shifted));
   // q mod 4 in the two low bits (the low 32 bits of the shifted value's mantissa).
   const auto quadrant = static_cast<std::int32_t>(std::bit_cast<std::int64_t>(shifted));
-  const double a = q * c1;
-  const double b = std::fma(q, c1, -a);
-  const float r = float((((p - a) - b) - q * c2) + e - q * c3);
   const float z = r * r;
   const float sin_r =
       r + r * z *

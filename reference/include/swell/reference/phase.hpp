@@ -23,23 +23,35 @@ namespace swell::reference {
 
 inline constexpr double kLargestPhase = 0x1p50;  // rad, ≈ 1.13e15
 
-// ω t reduced by a multiple of 2π, |result| ≤ π + 2⁻² for |ωt| ≤ kLargestPhase (q is chosen
-// from p alone, and p's rounding error e reaches ulp(p)/2 = 2⁻³ rad at 2⁵⁰), accurate to
-// ≈ 2e-15 rad (several ulps of π). Inline, branch-free and FMA-based so a loop over waves
-// vectorizes. Precondition: |ω t| ≤ kLargestPhase (not checked here: a case whose frames
-// exceed it is refused before any phase is computed).
-[[gnu::always_inline]] inline double reduced_phase(double omega, double t) {
-  constexpr double inverse_two_pi = 0x1.45f306dc9c883p-3;  // 1/(2π) rounded
-  constexpr double c1 = 0x1.921fb54442d18p+2;               // 2π = c1 + c2 + c3 (160 bits)
-  constexpr double c2 = 0x1.1a62633145c07p-52;
-  constexpr double c3 = -0x1.f1976b7ed8fbcp-108;
+// ω t reduced by a multiple q of the period P = 2π/2^Halvings: returns r = ωt − q·P, with
+// |r| ≤ P/2 + 2⁻³ for |ωt| ≤ kLargestPhase (q is chosen from p alone, and p's rounding error e
+// reaches ulp(p)/2 = 2⁻³ rad at 2⁵⁰), accurate to ≈ 2e-15 rad (several ulps of π), and sets
+// `shifted` to q + 1.5·2⁵², whose low mantissa bits are q mod 2⁵¹ (the quadrant, for P = π/2).
+// P's three parts are 2π's scaled by a power of two, so the argument above holds for each P
+// and Halvings = 0 is reduced_phase, bit for bit. Inline, branch-free and FMA-based so a loop
+// over waves vectorizes. Precondition: |ω t| ≤ kLargestPhase (not checked here: a case whose
+// frames exceed it is refused before any phase is computed).
+template <int Halvings>
+[[gnu::always_inline]] inline double reduce_phase_by(double omega, double t, double& shifted) {
+  constexpr double scale = 1.0 / double(1 << Halvings);
+  constexpr double inverse_period = 0x1.45f306dc9c883p-3 / scale;  // 1/(2π) rounded, over scale
+  constexpr double c1 = 0x1.921fb54442d18p+2 * scale;  // 2π = c1 + c2 + c3 (160 bits), scaled
+  constexpr double c2 = 0x1.1a62633145c07p-52 * scale;
+  constexpr double c3 = -0x1.f1976b7ed8fbcp-108 * scale;
   constexpr double round_shift = 0x1.8p52;  // x + 1.5·2⁵² rounds x to an integer (|x| < 2⁵¹)
   const double p = omega * t;
   const double e = std::fma(omega, t, -p);  // ωt = p + e exactly
-  const double q = (p * inverse_two_pi + round_shift) - round_shift;
+  shifted = p * inverse_period + round_shift;
+  const double q = shifted - round_shift;
   const double a = q * c1;
   const double b = std::fma(q, c1, -a);  // q c1 = a + b exactly
   return (((p - a) - b) - q * c2) + e - q * c3;
+}
+
+// ω t reduced by a multiple of 2π, |result| ≤ π + 2⁻² (reduce_phase_by).
+[[gnu::always_inline]] inline double reduced_phase(double omega, double t) {
+  double shifted;
+  return reduce_phase_by<0>(omega, t, shifted);
 }
 
 // e^(i·phase) = (cos phase, sin phase) from one sincos call: glibc's sincos shares sin's and
