@@ -36,7 +36,7 @@
 #include <numbers>
 #include <vector>
 
-#if defined(__AVX512F__)
+#if defined(__AVX__)
 #include <immintrin.h>
 #endif
 
@@ -46,22 +46,28 @@
 namespace swell::impls {
 namespace {
 
-// One 64-byte vector of reals (GCC/Clang vector extension: zmm with AVX-512, split into
-// narrower registers otherwise).
+// One vector of reals (GCC/Clang vector extension) as wide as the machine's registers: 64 bytes
+// (zmm) with AVX-512, 32 bytes (ymm) otherwise. With AVX2 alone a 64-byte vector is split into
+// two ymm, and the fused stages' eight elements no longer fit its 16 registers.
+#if defined(__AVX512F__)
+#define SWELL_RADIX2_VECTOR_BYTES 64
+#else
+#define SWELL_RADIX2_VECTOR_BYTES 32
+#endif
 template <typename T>
 struct VecOf;
 template <>
 struct VecOf<float> {
-  typedef float type __attribute__((vector_size(64)));
+  typedef float type __attribute__((vector_size(SWELL_RADIX2_VECTOR_BYTES)));
 };
 template <>
 struct VecOf<double> {
-  typedef double type __attribute__((vector_size(64)));
+  typedef double type __attribute__((vector_size(SWELL_RADIX2_VECTOR_BYTES)));
 };
 template <typename T>
 using Vec = typename VecOf<T>::type;
 template <typename T>
-constexpr int kLanes = 64 / sizeof(T);
+constexpr int kLanes = SWELL_RADIX2_VECTOR_BYTES / sizeof(T);
 // A scratch element: one sample of L signals.
 template <typename T>
 struct Cx {
@@ -302,6 +308,47 @@ template <typename T>
 inline void store_vec(std::complex<T>* p, Vec<T> v) {
   __builtin_memcpy(static_cast<void*>(p), &v, sizeof v);
 }
+#elif defined(__AVX__)
+// 32-byte vectors (AVX, AVX2). No shuffle here crosses the two 128-bit halves of a register:
+// on cores that split ymm operations in two (AMD Zen 1 and 2) a lane-crossing vperm2f128 costs
+// several times an in-half unpack, while a 128-bit load into either half (vinsertf128 from
+// memory) is as cheap as a plain load. The rows' transposes load and store 16 bytes per row.
+inline __m256 load_halves(const std::complex<float>* low, const std::complex<float>* high) {
+  return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(reinterpret_cast<const float*>(low))),
+                              _mm_loadu_ps(reinterpret_cast<const float*>(high)), 1);
+}
+inline __m256d load_halves(const std::complex<double>* low, const std::complex<double>* high) {
+  return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(reinterpret_cast<const double*>(low))),
+                              _mm_loadu_pd(reinterpret_cast<const double*>(high)), 1);
+}
+inline void store_halves(std::complex<float>* low, std::complex<float>* high, __m256 v) {
+  _mm_storeu_ps(reinterpret_cast<float*>(low), _mm256_castps256_ps128(v));
+  _mm_storeu_ps(reinterpret_cast<float*>(high), _mm256_extractf128_ps(v, 1));
+}
+inline void store_halves(std::complex<double>* low, std::complex<double>* high, __m256d v) {
+  _mm_storeu_pd(reinterpret_cast<double*>(low), _mm256_castpd256_pd128(v));
+  _mm_storeu_pd(reinterpret_cast<double*>(high), _mm256_extractf128_pd(v, 1));
+}
+// The 4 × 4 transpose within each 128-bit half: lane i of v[c] ← lane c of v[i] (i, c < 4),
+// and likewise lanes 4 + i. An involution, so loads and stores share it.
+inline void transpose_halves(__m256 (&v)[4]) {
+  const __m256 t0 = _mm256_unpacklo_ps(v[0], v[1]), t1 = _mm256_unpackhi_ps(v[0], v[1]);
+  const __m256 t2 = _mm256_unpacklo_ps(v[2], v[3]), t3 = _mm256_unpackhi_ps(v[2], v[3]);
+  v[0] = _mm256_shuffle_ps(t0, t2, 0x44);
+  v[1] = _mm256_shuffle_ps(t0, t2, 0xEE);
+  v[2] = _mm256_shuffle_ps(t1, t3, 0x44);
+  v[3] = _mm256_shuffle_ps(t1, t3, 0xEE);
+}
+template <typename T>
+inline Vec<T> load_vec(const std::complex<T>* p) {
+  Vec<T> v;
+  __builtin_memcpy(&v, static_cast<const void*>(p), sizeof v);
+  return v;
+}
+template <typename T>
+inline void store_vec(std::complex<T>* p, Vec<T> v) {
+  __builtin_memcpy(static_cast<void*>(p), &v, sizeof v);
+}
 #endif
 
 // L whole rows of length n: row l at src + l·n, written to dst + l·n (may equal src).
@@ -346,6 +393,53 @@ struct RowsIO {
 #pragma GCC unroll 16
     for (int l = 0; l < L; ++l) store_vec(dst + l * n + k, v[l]);
   }
+#elif defined(__AVX__)
+  // Lane i holds row i. fp32 (L = 8, samples k … k + 3): the 16 bytes of two samples of row i
+  // and of row i + 4 make one vector; the in-half transpose of four such vectors (rows 0–3 and
+  // 4–7) gives re and im of the two samples across the 8 rows. fp64 (L = 4, samples k, k + 1):
+  // one sample of rows i and i + 2 (i = 0, 1) make one vector; unpacking the pair gives its re
+  // and im across the 4 rows.
+  void load(int k, Cx<T>* x) const {
+    if constexpr (sizeof(T) == 4) {
+#pragma GCC unroll 2
+      for (int half = 0; half < 2; ++half) {
+        const int m = k + 2 * half;
+        __m256 v[4];
+#pragma GCC unroll 4
+        for (int i = 0; i < 4; ++i) v[i] = load_halves(src + i * n + m, src + (i + 4) * n + m);
+        transpose_halves(v);
+        x[2 * half] = {(Vec<T>)v[0], (Vec<T>)v[1]};
+        x[2 * half + 1] = {(Vec<T>)v[2], (Vec<T>)v[3]};
+      }
+    } else {
+#pragma GCC unroll 2
+      for (int t = 0; t < 2; ++t) {
+        const __m256d a = load_halves(src + k + t, src + 2 * n + k + t);
+        const __m256d b = load_halves(src + n + k + t, src + 3 * n + k + t);
+        x[t] = {(Vec<T>)_mm256_unpacklo_pd(a, b), (Vec<T>)_mm256_unpackhi_pd(a, b)};
+      }
+    }
+  }
+  void store(int k, const Cx<T>* x) const {
+    if constexpr (sizeof(T) == 4) {
+#pragma GCC unroll 2
+      for (int half = 0; half < 2; ++half) {
+        const int m = k + 2 * half;
+        __m256 v[4] = {(__m256)x[2 * half].re, (__m256)x[2 * half].im, (__m256)x[2 * half + 1].re,
+                       (__m256)x[2 * half + 1].im};
+        transpose_halves(v);
+#pragma GCC unroll 4
+        for (int i = 0; i < 4; ++i) store_halves(dst + i * n + m, dst + (i + 4) * n + m, v[i]);
+      }
+    } else {
+#pragma GCC unroll 2
+      for (int t = 0; t < 2; ++t) {
+        const __m256d re = (__m256d)x[t].re, im = (__m256d)x[t].im;
+        store_halves(dst + k + t, dst + 2 * n + k + t, _mm256_unpacklo_pd(re, im));
+        store_halves(dst + n + k + t, dst + 3 * n + k + t, _mm256_unpackhi_pd(re, im));
+      }
+    }
+  }
 #else
   void load(int k, Cx<T>* x) const {
     for (int t = 0; t < kGroup; ++t) x[t] = load1(k + t);
@@ -382,6 +476,31 @@ struct ColumnsIO {
     store_vec(p, permute2(x.re, index_vector(tab.low), x.im));
     store_vec(p + L / 2, permute2(x.re, index_vector(tab.high), x.im));
   }
+#elif defined(__AVX__)
+  // Two 32-byte loads, a = the block's first L/2 columns and b = the rest, split into re and
+  // im within halves. The lanes hold the columns out of order (fp32: 0, 1, 4, 5 | 2, 3, 6, 7;
+  // fp64: 0, 2 | 1, 3); store1 undoes exactly that, and the columns are independent signals.
+  Cx<T> load1(int m) const {
+    const std::complex<T>* p = data + m * stride;
+    const Vec<T> a = load_vec(p), b = load_vec(p + L / 2);
+    if constexpr (sizeof(T) == 4) {
+      return {(Vec<T>)_mm256_shuffle_ps((__m256)a, (__m256)b, 0x88),
+              (Vec<T>)_mm256_shuffle_ps((__m256)a, (__m256)b, 0xDD)};
+    } else {
+      return {(Vec<T>)_mm256_unpacklo_pd((__m256d)a, (__m256d)b),
+              (Vec<T>)_mm256_unpackhi_pd((__m256d)a, (__m256d)b)};
+    }
+  }
+  void store1(int m, const Cx<T>& x) const {
+    std::complex<T>* p = data + m * stride;
+    if constexpr (sizeof(T) == 4) {
+      store_vec(p, (Vec<T>)_mm256_unpacklo_ps((__m256)x.re, (__m256)x.im));
+      store_vec(p + L / 2, (Vec<T>)_mm256_unpackhi_ps((__m256)x.re, (__m256)x.im));
+    } else {
+      store_vec(p, (Vec<T>)_mm256_unpacklo_pd((__m256d)x.re, (__m256d)x.im));
+      store_vec(p + L / 2, (Vec<T>)_mm256_unpackhi_pd((__m256d)x.re, (__m256d)x.im));
+    }
+  }
 #else
   Cx<T> load1(int m) const {
     const std::complex<T>* p = data + m * stride;
@@ -397,15 +516,18 @@ struct ColumnsIO {
     for (int l = 0; l < L; ++l) p[l] = std::complex<T>(x.re[l], x.im[l]);
   }
 #endif
+  // The block's L complex values in one row: two 64-byte lines with AVX-512, one with AVX.
+  static constexpr int kLines = L * int(sizeof(std::complex<T>)) / 64;
   void prefetch(int m, int rw) const {
     if (m >= n) return;
     const char* p = reinterpret_cast<const char*>(data + m * stride);
-    if (rw) {
-      __builtin_prefetch(p, 1);
-      __builtin_prefetch(p + 64, 1);
-    } else {
-      __builtin_prefetch(p, 0);
-      __builtin_prefetch(p + 64, 0);
+#pragma GCC unroll 2
+    for (int line = 0; line < kLines; ++line) {
+      if (rw) {
+        __builtin_prefetch(p + 64 * line, 1);
+      } else {
+        __builtin_prefetch(p + 64 * line, 0);
+      }
     }
   }
   void load(int k, Cx<T>* x) const {
@@ -520,8 +642,9 @@ void transform_block(const IO& io, const Axis<T>& axis, bool inverse) {
   }
 
   int first_middle = 4;  // span of the first stage the gather has not done
-  if (n / 8 < G) {
-    // Gather with stages 1 and 2. Scratch position 4p + r holds sample bitrev(4p + r), which
+  if (n / 8 < G || n < 32) {
+    // Gather with stages 1 and 2 (also at n = 16, where gathering stages 1, 2 and 4 would
+    // leave the scatter's two stages, spans n/4 and n/2, overlapping span 4). Scratch position 4p + r holds sample bitrev(4p + r), which
     // is s + {0, n/2, n/4, 3n/4}[r] with s = bitrev over log2 n − 2 bits of p: the four
     // quarters of the input at the same offset s make one group of four.
     const int q = n / 4;
