@@ -1,9 +1,9 @@
 // radix2: Cooley–Tukey radix-2 decimation in time, powers of two only, fp32 and fp64.
 //
 // Layout for speed: every pass (rows along x, then columns along y) takes a block of L signals
-// (L = 16 floats or 8 doubles: one AVX-512 register) into a per-thread scratch array of
-// elements {re vector, im vector}: element i holds sample i of all L signals, split into real
-// and imaginary lanes, in bit-reversed order. Each butterfly then works on whole vectors — one
+// (one register: L = 16 floats or 8 doubles with AVX-512, 8 or 4 otherwise) into a per-thread
+// scratch array of elements {re vector, im vector}: element i holds sample i of all L signals,
+// split into real and imaginary lanes, in bit-reversed order. Each butterfly then works on whole vectors — one
 // twiddle broadcast against L signals — with no shuffles. Twiddles come from long double
 // cos/sin; every butterfly is the plain radix-2 one, a ± w·b, with the table twiddle w.
 //
@@ -20,8 +20,9 @@
 // Every butterfly is still the plain radix-2 one with the same table twiddle (the trivial ones
 // 1 and ∓i done exactly), so the arithmetic is stage-by-stage radix 2; fusing only keeps values
 // in registers between stages.
-//  * Gathering L rows is an L×L in-register transpose of full 64-byte loads (AVX-512), not
-//    scalar moves; gathering L columns is two loads and two permutes per row. The strided
+//  * Gathering L rows is an L×L in-register transpose of full 64-byte loads (AVX-512; with
+//    AVX, of 16-byte loads into the halves of 32-byte registers, which keeps every shuffle
+//    within a half), not scalar moves; gathering L columns is two loads and two permutes per row. The strided
 //    column accesses are software-prefetched a few rows ahead, since the hardware prefetchers
 //    do not follow 16 KB strides.
 // Signals left over when a count is not a multiple of L, and sizes too small for the fused
