@@ -195,6 +195,20 @@ void stages(Cx<T>* x, int begin, int end, int first, int last, const T* wr, cons
 // An IO gives the L signals of a block sample by sample: load1/store1 one sample m (natural
 // order), load/store kGroup consecutive samples k … k + kGroup − 1.
 
+#if defined(__AVX__)
+// One register's worth of complex values, unaligned.
+template <typename T>
+inline Vec<T> load_vec(const std::complex<T>* p) {
+  Vec<T> v;
+  __builtin_memcpy(&v, static_cast<const void*>(p), sizeof v);
+  return v;
+}
+template <typename T>
+inline void store_vec(std::complex<T>* p, Vec<T> v) {
+  __builtin_memcpy(static_cast<void*>(p), &v, sizeof v);
+}
+#endif
+
 #if defined(__AVX512F__)
 inline Vec<float> permute2(Vec<float> a, __m512i index, Vec<float> b) {
   return (Vec<float>)_mm512_permutex2var_ps((__m512)a, index, (__m512)b);
@@ -299,16 +313,6 @@ inline void transpose(Vec<double> (&v)[8]) {
   }
 }
 
-template <typename T>
-inline Vec<T> load_vec(const std::complex<T>* p) {
-  Vec<T> v;
-  __builtin_memcpy(&v, static_cast<const void*>(p), sizeof v);
-  return v;
-}
-template <typename T>
-inline void store_vec(std::complex<T>* p, Vec<T> v) {
-  __builtin_memcpy(static_cast<void*>(p), &v, sizeof v);
-}
 #elif defined(__AVX__)
 // 32-byte vectors (AVX, AVX2). No shuffle here crosses the two 128-bit halves of a register:
 // on cores that split ymm operations in two (AMD Zen 1 and 2) a lane-crossing vperm2f128 costs
@@ -339,16 +343,6 @@ inline void transpose_halves(__m256 (&v)[4]) {
   v[1] = _mm256_shuffle_ps(t0, t2, 0xEE);
   v[2] = _mm256_shuffle_ps(t1, t3, 0x44);
   v[3] = _mm256_shuffle_ps(t1, t3, 0xEE);
-}
-template <typename T>
-inline Vec<T> load_vec(const std::complex<T>* p) {
-  Vec<T> v;
-  __builtin_memcpy(&v, static_cast<const void*>(p), sizeof v);
-  return v;
-}
-template <typename T>
-inline void store_vec(std::complex<T>* p, Vec<T> v) {
-  __builtin_memcpy(static_cast<void*>(p), &v, sizeof v);
 }
 #endif
 
