@@ -3,9 +3,10 @@
 // Layout for speed: every pass (rows along x, then columns along y) takes a block of L signals
 // (one register: L = 16 floats or 8 doubles with AVX-512, 8 or 4 otherwise) into a per-thread
 // scratch array of elements {re vector, im vector}: element i holds sample i of all L signals,
-// split into real and imaginary lanes, in bit-reversed order. Each butterfly then works on whole vectors — one
-// twiddle broadcast against L signals — with no shuffles. Twiddles come from long double
-// cos/sin; every butterfly is the plain radix-2 one, a ± w·b, with the table twiddle w.
+// split into real and imaginary lanes, in bit-reversed order. Each butterfly then works on
+// whole vectors — one twiddle broadcast against L signals — with no shuffles. Twiddles come
+// from long double cos/sin; every butterfly is the plain radix-2 one, a ± w·b, with the table
+// twiddle w.
 //
 // What makes it fast (a 2-D transform is mostly memory traffic, not arithmetic):
 //  * Up to three radix-2 stages per sweep over the scratch (stages h, 2h, 4h on 8 elements
@@ -22,9 +23,9 @@
 // in registers between stages.
 //  * Gathering L rows is an L×L in-register transpose of full 64-byte loads (AVX-512; with
 //    AVX, of 16-byte loads into the halves of 32-byte registers, which keeps every shuffle
-//    within a half), not scalar moves; gathering L columns is two loads and two permutes per row. The strided
-//    column accesses are software-prefetched a few rows ahead, since the hardware prefetchers
-//    do not follow 16 KB strides.
+//    within a half), not scalar moves; gathering L columns is two loads and two shuffles per
+//    row. The strided column accesses are software-prefetched a few rows ahead, since the
+//    hardware prefetchers do not follow 16 KB strides.
 // Signals left over when a count is not a multiple of L, and sizes too small for the fused
 // passes, go through the same stages with scalar gathers (unused lanes hold zeros).
 #include <omp.h>
@@ -319,12 +320,14 @@ inline void transpose(Vec<double> (&v)[8]) {
 // several times an in-half unpack, while a 128-bit load into either half (vinsertf128 from
 // memory) is as cheap as a plain load. The rows' transposes load and store 16 bytes per row.
 inline __m256 load_halves(const std::complex<float>* low, const std::complex<float>* high) {
-  return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(reinterpret_cast<const float*>(low))),
-                              _mm_loadu_ps(reinterpret_cast<const float*>(high)), 1);
+  const __m128 l = _mm_loadu_ps(reinterpret_cast<const float*>(low));
+  const __m128 h = _mm_loadu_ps(reinterpret_cast<const float*>(high));
+  return _mm256_insertf128_ps(_mm256_castps128_ps256(l), h, 1);
 }
 inline __m256d load_halves(const std::complex<double>* low, const std::complex<double>* high) {
-  return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(reinterpret_cast<const double*>(low))),
-                              _mm_loadu_pd(reinterpret_cast<const double*>(high)), 1);
+  const __m128d l = _mm_loadu_pd(reinterpret_cast<const double*>(low));
+  const __m128d h = _mm_loadu_pd(reinterpret_cast<const double*>(high));
+  return _mm256_insertf128_pd(_mm256_castpd128_pd256(l), h, 1);
 }
 inline void store_halves(std::complex<float>* low, std::complex<float>* high, __m256 v) {
   _mm_storeu_ps(reinterpret_cast<float*>(low), _mm256_castps256_ps128(v));
@@ -637,9 +640,10 @@ void transform_block(const IO& io, const Axis<T>& axis, bool inverse) {
   }
 
   int first_middle = 4;  // span of the first stage the gather has not done
+  // The eight-point gather (spans 1, 2, 4) needs G samples in each eighth, and room above span 4
+  // for the scatter's two stages at the least (spans n/4, n/2): n ≥ 32.
   if (n / 8 < G || n < 32) {
-    // Gather with stages 1 and 2 (also at n = 16, where gathering stages 1, 2 and 4 would
-    // leave the scatter's two stages, spans n/4 and n/2, overlapping span 4). Scratch position 4p + r holds sample bitrev(4p + r), which
+    // Gather with stages 1 and 2. Scratch position 4p + r holds sample bitrev(4p + r), which
     // is s + {0, n/2, n/4, 3n/4}[r] with s = bitrev over log2 n − 2 bits of p: the four
     // quarters of the input at the same offset s make one group of four.
     const int q = n / 4;
