@@ -365,7 +365,12 @@ inline void transpose_halves(__m256 (&v)[4]) {
 template <typename T>
 struct RowsIO {
   static constexpr int L = kLanes<T>;
-  static constexpr int kGroup = L / 2;  // complex values per 64-byte load
+  // Samples per load and store: one 64-byte line of each row (8 floats' or 4 doubles' complex
+  // values), whatever the register width. Half lines (AVX's L / 2 samples) let the gather's 32
+  // row streams at 4 KiB strides, which share an L1 set, evict each line between its halves:
+  // fp64 2048-point rows took 6 % longer on Zen 1 (docs/performance.md §8).
+  static constexpr int kGroup = 64 / int(sizeof(std::complex<T>));
+  static_assert(kGroup % (L / 2) == 0);
   const std::complex<T>* src;
   std::complex<T>* dst;
   std::size_t n;
@@ -404,26 +409,26 @@ struct RowsIO {
     for (int l = 0; l < L; ++l) store_vec(dst + l * n + k, v[l]);
   }
 #elif defined(__AVX__)
-  // Lane i holds row i. fp32 (L = 8, samples k … k + 3): the 16 bytes of two samples of row i
-  // and of row i + 4 make one vector; the in-half transpose of four such vectors (rows 0–3 and
-  // 4–7) gives re and im of the two samples across the 8 rows. fp64 (L = 4, samples k, k + 1):
-  // one sample of rows i and i + 2 (i = 0, 1) make one vector; unpacking the pair gives its re
-  // and im across the 4 rows.
+  // Lane i holds row i. fp32 (L = 8, samples k … k + 7, by pairs): the 16 bytes of a pair of
+  // samples of row i and of row i + 4 make one vector; the in-half transpose of four such
+  // vectors (rows 0–3 and 4–7) gives re and im of the pair across the 8 rows. fp64 (L = 4,
+  // samples k … k + 3, one at a time): one sample of rows i and i + 2 (i = 0, 1) make one
+  // vector; unpacking the two gives its re and im across the 4 rows.
   void load(int k, Cx<T>* x) const {
     if constexpr (sizeof(T) == 4) {
-#pragma GCC unroll 2
-      for (int half = 0; half < 2; ++half) {
-        const int m = k + 2 * half;
+#pragma GCC unroll 4
+      for (int pair = 0; pair < kGroup / 2; ++pair) {
+        const int m = k + 2 * pair;
         __m256 v[4];
 #pragma GCC unroll 4
         for (int i = 0; i < 4; ++i) v[i] = load_halves(src + i * n + m, src + (i + 4) * n + m);
         transpose_halves(v);
-        x[2 * half] = {(Vec<T>)v[0], (Vec<T>)v[1]};
-        x[2 * half + 1] = {(Vec<T>)v[2], (Vec<T>)v[3]};
+        x[2 * pair] = {(Vec<T>)v[0], (Vec<T>)v[1]};
+        x[2 * pair + 1] = {(Vec<T>)v[2], (Vec<T>)v[3]};
       }
     } else {
-#pragma GCC unroll 2
-      for (int t = 0; t < 2; ++t) {
+#pragma GCC unroll 4
+      for (int t = 0; t < kGroup; ++t) {
         const __m256d a = load_halves(src + k + t, src + 2 * n + k + t);
         const __m256d b = load_halves(src + n + k + t, src + 3 * n + k + t);
         x[t] = {(Vec<T>)_mm256_unpacklo_pd(a, b), (Vec<T>)_mm256_unpackhi_pd(a, b)};
@@ -432,18 +437,18 @@ struct RowsIO {
   }
   void store(int k, const Cx<T>* x) const {
     if constexpr (sizeof(T) == 4) {
-#pragma GCC unroll 2
-      for (int half = 0; half < 2; ++half) {
-        const int m = k + 2 * half;
-        __m256 v[4] = {(__m256)x[2 * half].re, (__m256)x[2 * half].im, (__m256)x[2 * half + 1].re,
-                       (__m256)x[2 * half + 1].im};
+#pragma GCC unroll 4
+      for (int pair = 0; pair < kGroup / 2; ++pair) {
+        const int m = k + 2 * pair;
+        __m256 v[4] = {(__m256)x[2 * pair].re, (__m256)x[2 * pair].im, (__m256)x[2 * pair + 1].re,
+                       (__m256)x[2 * pair + 1].im};
         transpose_halves(v);
 #pragma GCC unroll 4
         for (int i = 0; i < 4; ++i) store_halves(dst + i * n + m, dst + (i + 4) * n + m, v[i]);
       }
     } else {
-#pragma GCC unroll 2
-      for (int t = 0; t < 2; ++t) {
+#pragma GCC unroll 4
+      for (int t = 0; t < kGroup; ++t) {
         const __m256d re = (__m256d)x[t].re, im = (__m256d)x[t].im;
         store_halves(dst + k + t, dst + 2 * n + k + t, _mm256_unpacklo_pd(re, im));
         store_halves(dst + n + k + t, dst + 3 * n + k + t, _mm256_unpackhi_pd(re, im));
