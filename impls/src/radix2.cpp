@@ -74,8 +74,9 @@ constexpr int kLanes = SWELL_RADIX2_VECTOR_BYTES / sizeof(T);
 // A scratch element: one sample of L signals.
 //
 // Copies go member by member: GCC 12 lowers the implicit copy of this 2-vector aggregate as a
-// block move, which on AVX2 hosts it carried through pairs of general registers (vmovq,
-// vpinsrq) in the fused stages' stores — 12–16 % of the row pass at 256² on AMD Zen 1.
+// block move, which for every AVX2 target (not AVX-512) it carried through pairs of general
+// registers (vmovq, vpinsrq) in the fused stages' loads and stores; without them the row pass
+// at 256² took 37–40 % less on AMD Zen 1 (docs/performance.md §8).
 template <typename T>
 struct Cx {
   Vec<T> re, im;
