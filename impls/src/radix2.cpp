@@ -39,7 +39,7 @@
 #include <numbers>
 #include <vector>
 
-#if defined(__AVX__)
+#if defined(__SSE2__)
 #include <immintrin.h>
 #endif
 
@@ -50,12 +50,15 @@ namespace swell::impls {
 namespace {
 
 // One vector of reals (GCC/Clang vector extension) as wide as the machine's registers: 64 bytes
-// (zmm) with AVX-512, 32 bytes (ymm) otherwise. With AVX2 alone a 64-byte vector is split into
-// two ymm, and the fused stages' eight elements no longer fit its 16 registers.
+// (zmm) with AVX-512, 32 bytes (ymm) with AVX, 16 (xmm) otherwise — the portable x86-64 build
+// (SSE2) and other architectures. A vector wider than the registers is split into several,
+// and the fused stages' eight elements no longer fit the 16 registers.
 #if defined(__AVX512F__)
 #define SWELL_RADIX2_VECTOR_BYTES 64
-#else
+#elif defined(__AVX__)
 #define SWELL_RADIX2_VECTOR_BYTES 32
+#else
+#define SWELL_RADIX2_VECTOR_BYTES 16
 #endif
 template <typename T>
 struct VecOf;
@@ -210,7 +213,7 @@ void stages(Cx<T>* x, int begin, int end, int first, int last, const T* wr, cons
 // An IO gives the L signals of a block sample by sample: load1/store1 one sample m (natural
 // order), load/store kGroup consecutive samples k … k + kGroup − 1.
 
-#if defined(__AVX__)
+#if defined(__SSE2__)
 // One register's worth of complex values, unaligned.
 template <typename T>
 inline Vec<T> load_vec(const std::complex<T>* p) {
@@ -388,6 +391,22 @@ struct RowsIO {
   void store1(int m, const Cx<T>& x) const {
     for (int l = 0; l < L; ++l) dst[l * n + m] = std::complex<T>(x.re[l], x.im[l]);
   }
+  // The next line of each of the L rows, read (rw = 0) or written (rw = 1) by the next load or
+  // store of the same rows: the gather's and the scatter's 8–16 streams a row, 64–128 in all,
+  // are more than the hardware prefetchers follow. On AMD Zen 1 the row pass took 10–25 % less
+  // with it (fp64 512-point rows 2.06–2.25 → 1.53–1.64 ms, fp32 2048-point 21.5 → 18.5 ms); with
+  // AVX-512 on Zen 4 it had not paid (docs/performance.md §3), so that path does not call it.
+  void prefetch_next(const std::complex<T>* rows, int k, int rw) const {
+    if (k + kGroup >= int(n)) return;
+#pragma GCC unroll 8
+    for (int l = 0; l < L; ++l) {
+      if (rw) {
+        __builtin_prefetch(rows + l * n + k + kGroup, 1);
+      } else {
+        __builtin_prefetch(rows + l * n + k + kGroup, 0);
+      }
+    }
+  }
 #if defined(__AVX512F__)
   // One 64-byte load per row, then a transpose: vector 2t holds the real parts of sample
   // k + t across the L rows, vector 2t + 1 the imaginary parts.
@@ -417,22 +436,7 @@ struct RowsIO {
   // samples k … k + 3, one at a time): one sample of rows i and i + 2 (i = 0, 1) make one
   // vector; unpacking the two gives its re and im across the 4 rows.
   //
-  // Each load and store also prefetches the next line of its L rows (read for loads, write for
-  // stores): the gather's and the scatter's 8–16 streams a row, 64–128 in all, are more than the
-  // hardware prefetchers follow. On AMD Zen 1 the row pass took 10–25 % less with it (fp64
-  // 512-point rows 2.06–2.25 → 1.53–1.64 ms, fp32 2048-point 21.5 → 18.5 ms); with AVX-512 on
-  // Zen 4 it had not paid (docs/performance.md §3), so that path has none.
-  void prefetch_next(const std::complex<T>* rows, int k, int rw) const {
-    if (k + kGroup >= int(n)) return;
-#pragma GCC unroll 8
-    for (int l = 0; l < L; ++l) {
-      if (rw) {
-        __builtin_prefetch(rows + l * n + k + kGroup, 1);
-      } else {
-        __builtin_prefetch(rows + l * n + k + kGroup, 0);
-      }
-    }
-  }
+  // Each load and store also prefetches the next line of its L rows (prefetch_next).
   void load(int k, Cx<T>* x) const {
     prefetch_next(src, k, 0);
     if constexpr (sizeof(T) == 4) {
@@ -473,6 +477,53 @@ struct RowsIO {
         const __m256d re = (__m256d)x[t].re, im = (__m256d)x[t].im;
         store_halves(dst + k + t, dst + 2 * n + k + t, _mm256_unpacklo_pd(re, im));
         store_halves(dst + n + k + t, dst + 3 * n + k + t, _mm256_unpackhi_pd(re, im));
+      }
+    }
+  }
+#elif defined(__SSE2__)
+  // 16-byte vectors, lane i holding row i. fp32 (L = 4): two samples of row i in one load; the
+  // 4 × 4 transpose of the four rows' loads gives re and im of both samples. fp64 (L = 2): one
+  // sample of each row a load; unpacking the two gives re and im.
+  void load(int k, Cx<T>* x) const {
+    prefetch_next(src, k, 0);
+    if constexpr (sizeof(T) == 4) {
+#pragma GCC unroll 4
+      for (int pair = 0; pair < kGroup / 2; ++pair) {
+        const int m = k + 2 * pair;
+        __m128 v0 = (__m128)load_vec(src + m), v1 = (__m128)load_vec(src + n + m);
+        __m128 v2 = (__m128)load_vec(src + 2 * n + m), v3 = (__m128)load_vec(src + 3 * n + m);
+        _MM_TRANSPOSE4_PS(v0, v1, v2, v3);
+        x[2 * pair] = {(Vec<T>)v0, (Vec<T>)v1};
+        x[2 * pair + 1] = {(Vec<T>)v2, (Vec<T>)v3};
+      }
+    } else {
+#pragma GCC unroll 4
+      for (int t = 0; t < kGroup; ++t) {
+        const __m128d a = (__m128d)load_vec(src + k + t), b = (__m128d)load_vec(src + n + k + t);
+        x[t] = {(Vec<T>)_mm_unpacklo_pd(a, b), (Vec<T>)_mm_unpackhi_pd(a, b)};
+      }
+    }
+  }
+  void store(int k, const Cx<T>* x) const {
+    prefetch_next(dst, k, 1);
+    if constexpr (sizeof(T) == 4) {
+#pragma GCC unroll 4
+      for (int pair = 0; pair < kGroup / 2; ++pair) {
+        const int m = k + 2 * pair;
+        __m128 v0 = (__m128)x[2 * pair].re, v1 = (__m128)x[2 * pair].im;
+        __m128 v2 = (__m128)x[2 * pair + 1].re, v3 = (__m128)x[2 * pair + 1].im;
+        _MM_TRANSPOSE4_PS(v0, v1, v2, v3);
+        store_vec(dst + m, (Vec<T>)v0);
+        store_vec(dst + n + m, (Vec<T>)v1);
+        store_vec(dst + 2 * n + m, (Vec<T>)v2);
+        store_vec(dst + 3 * n + m, (Vec<T>)v3);
+      }
+    } else {
+#pragma GCC unroll 4
+      for (int t = 0; t < kGroup; ++t) {
+        const __m128d re = (__m128d)x[t].re, im = (__m128d)x[t].im;
+        store_vec(dst + k + t, (Vec<T>)_mm_unpacklo_pd(re, im));
+        store_vec(dst + n + k + t, (Vec<T>)_mm_unpackhi_pd(re, im));
       }
     }
   }
@@ -537,6 +588,29 @@ struct ColumnsIO {
       store_vec(p + L / 2, (Vec<T>)_mm256_unpackhi_pd((__m256d)x.re, (__m256d)x.im));
     }
   }
+#elif defined(__SSE2__)
+  // Two 16-byte loads, split into re and im in natural order (fp32: shufps; fp64: unpack).
+  Cx<T> load1(int m) const {
+    const std::complex<T>* p = data + m * stride;
+    const Vec<T> a = load_vec(p), b = load_vec(p + L / 2);
+    if constexpr (sizeof(T) == 4) {
+      return {(Vec<T>)_mm_shuffle_ps((__m128)a, (__m128)b, 0x88),
+              (Vec<T>)_mm_shuffle_ps((__m128)a, (__m128)b, 0xDD)};
+    } else {
+      return {(Vec<T>)_mm_unpacklo_pd((__m128d)a, (__m128d)b),
+              (Vec<T>)_mm_unpackhi_pd((__m128d)a, (__m128d)b)};
+    }
+  }
+  void store1(int m, const Cx<T>& x) const {
+    std::complex<T>* p = data + m * stride;
+    if constexpr (sizeof(T) == 4) {
+      store_vec(p, (Vec<T>)_mm_unpacklo_ps((__m128)x.re, (__m128)x.im));
+      store_vec(p + L / 2, (Vec<T>)_mm_unpackhi_ps((__m128)x.re, (__m128)x.im));
+    } else {
+      store_vec(p, (Vec<T>)_mm_unpacklo_pd((__m128d)x.re, (__m128d)x.im));
+      store_vec(p + L / 2, (Vec<T>)_mm_unpackhi_pd((__m128d)x.re, (__m128d)x.im));
+    }
+  }
 #else
   Cx<T> load1(int m) const {
     const std::complex<T>* p = data + m * stride;
@@ -552,8 +626,9 @@ struct ColumnsIO {
     for (int l = 0; l < L; ++l) p[l] = std::complex<T>(x.re[l], x.im[l]);
   }
 #endif
-  // The block's L complex values in one row: two 64-byte lines with AVX-512, one with AVX.
-  static constexpr int kLines = L * int(sizeof(std::complex<T>)) / 64;
+  // The block's L complex values in one row: two 64-byte lines with AVX-512, one with AVX, half a
+  // line (prefetched by each of the two blocks in it) with 16-byte vectors.
+  static constexpr int kLines = std::max(1, L * int(sizeof(std::complex<T>)) / 64);
   void prefetch(int m, int rw) const {
     if (m >= n) return;
     const char* p = reinterpret_cast<const char*>(data + m * stride);
@@ -792,15 +867,16 @@ void transform_block(const IO io, const Axis<T>& axis, bool inverse) {
 // host), 32×1024 43.9 / 72.5 and 47.1 / 57.8, 64×512 42.4 / 47.2, fp64 128×256 80.5 / 95.2;
 // with one pass threaded and the other not, 128×256 42.1 / 47.6, fp64 128×256 83.1 / 117.1.
 constexpr std::size_t kThreadedFromPoints = std::size_t(1) << 15;
+constexpr int kThreadedFromRowBlocksPerThread = 2;
+constexpr int kThreadedFromColumnBlocksPerThread = 4;
 
-// Column blocks transformed together (transform_blocks): without AVX-512 a block is 64 bytes
+// Column blocks transformed together (transform_blocks): with AVX (no AVX-512) a block is 64 bytes
 // of each row, one cache line, and two adjacent blocks use both lines of a 128-byte pair while
 // they are in the caches, as one AVX-512 block does. On AMD Zen 1 (2026-12-04, minima, one
 // process alternating): fp64 2048² 104 → 92 ms, 4096² 522–556 → 462–475 ms, 1024² 20.1–20.5
 // → 18.0–19.9 ms; fp32 2048² 46.6–48.4 → 45.7–46.6 ms; 256² and 512² the same within noise.
-constexpr int kColumnBlocksTogether = SWELL_RADIX2_VECTOR_BYTES == 64 ? 1 : 2;
-constexpr int kThreadedFromRowBlocksPerThread = 2;
-constexpr int kThreadedFromColumnBlocksPerThread = 4;
+// With 16-byte vectors (the portable build) a block is 32 bytes of a row, and four go together.
+constexpr int kColumnBlocksTogether = 128 / (2 * SWELL_RADIX2_VECTOR_BYTES);  // 1, 2, 4
 
 template <typename T>
 class Radix2Engine final : public detail::ComplexEngine<T> {
