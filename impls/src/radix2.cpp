@@ -1,7 +1,8 @@
 // radix2: Cooley–Tukey radix-2 decimation in time, powers of two only, fp32 and fp64.
 //
 // Layout for speed: every pass (rows along x, then columns along y) takes a block of L signals
-// (one register: L = 16 floats or 8 doubles with AVX-512, 8 or 4 otherwise) into a per-thread
+// (one register: L = 16 floats or 8 doubles with AVX-512, 8 or 4 with AVX, 4 or 2 with the
+// portable build's SSE2 and on other architectures) into a per-thread
 // scratch array of elements {re vector, im vector}: element i holds sample i of all L signals,
 // split into real and imaginary lanes, in bit-reversed order. Each butterfly then works on
 // whole vectors — one twiddle broadcast against L signals — with no shuffles. Twiddles come
@@ -23,10 +24,11 @@
 // in registers between stages.
 //  * Gathering L rows is an L×L in-register transpose of full 64-byte loads (AVX-512; with
 //    AVX, of 16-byte loads into the halves of 32-byte registers, which keeps every shuffle
-//    within a half), not scalar moves; gathering L columns is two loads and two shuffles per
-//    row. The strided column accesses are software-prefetched a few rows ahead, since the
-//    hardware prefetchers do not follow 16 KB strides. Without AVX-512 two adjacent column
-//    blocks go together, so that each row's 128 bytes are used at once, as with AVX-512.
+//    within a half; with SSE2, a 4×4 transpose or an unpack of 16-byte loads), not scalar moves;
+//    gathering L columns is two loads and two shuffles per row. The strided column accesses are
+//    software-prefetched a few rows ahead, since the hardware prefetchers do not follow 16 KB
+//    strides. With narrower vectors two (AVX) or four (SSE2) adjacent column blocks go
+//    together, so that each row's 128 bytes are used at once, as with AVX-512.
 // Signals left over when a count is not a multiple of L, and sizes too small for the fused
 // passes, go through the same stages with scalar gathers (unused lanes hold zeros).
 #include <omp.h>
