@@ -229,6 +229,56 @@ inline void store_vec(std::complex<T>* p, Vec<T> v) {
 }
 #endif
 
+#if defined(__SSE2__) && SWELL_RADIX2_VECTOR_BYTES <= 32
+// The intrinsics' type for a Vec<T> (16 or 32 bytes), and two registers of interleaved complex
+// values (re, im, re, im, …) split into their real and imaginary parts and back, by shuffles
+// within 128-bit halves: with 32-byte registers the parts come out in a fixed permuted order
+// (fp32: 0, 1, 4, 5 | 2, 3, 6, 7; fp64: 0, 2 | 1, 3) that interleave_low/high undo, with
+// 16-byte ones in order.
+template <typename T>
+struct RegOf;
+#if SWELL_RADIX2_VECTOR_BYTES == 16
+template <>
+struct RegOf<float> {
+  typedef __m128 type;
+};
+template <>
+struct RegOf<double> {
+  typedef __m128d type;
+};
+#else
+template <>
+struct RegOf<float> {
+  typedef __m256 type;
+};
+template <>
+struct RegOf<double> {
+  typedef __m256d type;
+};
+#endif
+template <typename T>
+using Reg = typename RegOf<T>::type;
+#if SWELL_RADIX2_VECTOR_BYTES == 16
+inline __m128 real_parts(__m128 a, __m128 b) { return _mm_shuffle_ps(a, b, 0x88); }
+inline __m128 imag_parts(__m128 a, __m128 b) { return _mm_shuffle_ps(a, b, 0xDD); }
+inline __m128d real_parts(__m128d a, __m128d b) { return _mm_unpacklo_pd(a, b); }
+inline __m128d imag_parts(__m128d a, __m128d b) { return _mm_unpackhi_pd(a, b); }
+inline __m128 interleave_low(__m128 re, __m128 im) { return _mm_unpacklo_ps(re, im); }
+inline __m128 interleave_high(__m128 re, __m128 im) { return _mm_unpackhi_ps(re, im); }
+inline __m128d interleave_low(__m128d re, __m128d im) { return _mm_unpacklo_pd(re, im); }
+inline __m128d interleave_high(__m128d re, __m128d im) { return _mm_unpackhi_pd(re, im); }
+#else
+inline __m256 real_parts(__m256 a, __m256 b) { return _mm256_shuffle_ps(a, b, 0x88); }
+inline __m256 imag_parts(__m256 a, __m256 b) { return _mm256_shuffle_ps(a, b, 0xDD); }
+inline __m256d real_parts(__m256d a, __m256d b) { return _mm256_unpacklo_pd(a, b); }
+inline __m256d imag_parts(__m256d a, __m256d b) { return _mm256_unpackhi_pd(a, b); }
+inline __m256 interleave_low(__m256 re, __m256 im) { return _mm256_unpacklo_ps(re, im); }
+inline __m256 interleave_high(__m256 re, __m256 im) { return _mm256_unpackhi_ps(re, im); }
+inline __m256d interleave_low(__m256d re, __m256d im) { return _mm256_unpacklo_pd(re, im); }
+inline __m256d interleave_high(__m256d re, __m256d im) { return _mm256_unpackhi_pd(re, im); }
+#endif
+#endif
+
 #if defined(__AVX512F__)
 inline Vec<float> permute2(Vec<float> a, __m512i index, Vec<float> b) {
   return (Vec<float>)_mm512_permutex2var_ps((__m512)a, index, (__m512)b);
@@ -565,53 +615,20 @@ struct ColumnsIO {
     store_vec(p, permute2(x.re, index_vector(tab.low), x.im));
     store_vec(p + L / 2, permute2(x.re, index_vector(tab.high), x.im));
   }
-#elif defined(__AVX__)
-  // Two 32-byte loads, a = the block's first L/2 columns and b = the rest, split into re and
-  // im within halves. The lanes hold the columns out of order (fp32: 0, 1, 4, 5 | 2, 3, 6, 7;
-  // fp64: 0, 2 | 1, 3); store1 undoes exactly that, and the columns are independent signals.
-  Cx<T> load1(int m) const {
-    const std::complex<T>* p = data + m * stride;
-    const Vec<T> a = load_vec(p), b = load_vec(p + L / 2);
-    if constexpr (sizeof(T) == 4) {
-      return {(Vec<T>)_mm256_shuffle_ps((__m256)a, (__m256)b, 0x88),
-              (Vec<T>)_mm256_shuffle_ps((__m256)a, (__m256)b, 0xDD)};
-    } else {
-      return {(Vec<T>)_mm256_unpacklo_pd((__m256d)a, (__m256d)b),
-              (Vec<T>)_mm256_unpackhi_pd((__m256d)a, (__m256d)b)};
-    }
-  }
-  void store1(int m, const Cx<T>& x) const {
-    std::complex<T>* p = data + m * stride;
-    if constexpr (sizeof(T) == 4) {
-      store_vec(p, (Vec<T>)_mm256_unpacklo_ps((__m256)x.re, (__m256)x.im));
-      store_vec(p + L / 2, (Vec<T>)_mm256_unpackhi_ps((__m256)x.re, (__m256)x.im));
-    } else {
-      store_vec(p, (Vec<T>)_mm256_unpacklo_pd((__m256d)x.re, (__m256d)x.im));
-      store_vec(p + L / 2, (Vec<T>)_mm256_unpackhi_pd((__m256d)x.re, (__m256d)x.im));
-    }
-  }
 #elif defined(__SSE2__)
-  // Two 16-byte loads, split into re and im in natural order (fp32: shufps; fp64: unpack).
+  // Two loads, a = the block's first L/2 columns and b = the rest, split into re and im within
+  // 128-bit halves (real_parts, imag_parts). With 32-byte vectors the lanes hold the columns out
+  // of order; store1 undoes exactly that, and the columns are independent signals.
   Cx<T> load1(int m) const {
     const std::complex<T>* p = data + m * stride;
-    const Vec<T> a = load_vec(p), b = load_vec(p + L / 2);
-    if constexpr (sizeof(T) == 4) {
-      return {(Vec<T>)_mm_shuffle_ps((__m128)a, (__m128)b, 0x88),
-              (Vec<T>)_mm_shuffle_ps((__m128)a, (__m128)b, 0xDD)};
-    } else {
-      return {(Vec<T>)_mm_unpacklo_pd((__m128d)a, (__m128d)b),
-              (Vec<T>)_mm_unpackhi_pd((__m128d)a, (__m128d)b)};
-    }
+    const auto a = (Reg<T>)load_vec(p), b = (Reg<T>)load_vec(p + L / 2);
+    return {(Vec<T>)real_parts(a, b), (Vec<T>)imag_parts(a, b)};
   }
   void store1(int m, const Cx<T>& x) const {
     std::complex<T>* p = data + m * stride;
-    if constexpr (sizeof(T) == 4) {
-      store_vec(p, (Vec<T>)_mm_unpacklo_ps((__m128)x.re, (__m128)x.im));
-      store_vec(p + L / 2, (Vec<T>)_mm_unpackhi_ps((__m128)x.re, (__m128)x.im));
-    } else {
-      store_vec(p, (Vec<T>)_mm_unpacklo_pd((__m128d)x.re, (__m128d)x.im));
-      store_vec(p + L / 2, (Vec<T>)_mm_unpackhi_pd((__m128d)x.re, (__m128d)x.im));
-    }
+    const auto re = (Reg<T>)x.re, im = (Reg<T>)x.im;
+    store_vec(p, (Vec<T>)interleave_low(re, im));
+    store_vec(p + L / 2, (Vec<T>)interleave_high(re, im));
   }
 #else
   Cx<T> load1(int m) const {
@@ -743,9 +760,9 @@ void scatter_last(const std::array<IO, P> ios, const Cx<T>* __restrict x, int n,
   }
 }
 
-// P blocks of L signals each (P = 1, or 2 adjacent column blocks without AVX-512: the two
-// 64-byte lines of a row used together, as AVX-512's one block uses them), each with its own
-// scratch; the gather and the scatter go step by step through the blocks, the middle stages
+// P blocks of L signals each (P = 1, or kColumnBlocksTogether adjacent column blocks: 2 with
+// AVX, 4 with 16-byte vectors, so that a row's 128 bytes are used together, as AVX-512's one
+// block uses them), each with its own scratch; the gather and the scatter go step by step through the blocks, the middle stages
 // block by block.
 template <typename T, typename IO, int P>
 void transform_blocks(const std::array<IO, P> ios, const Axis<T>& axis, bool inverse) {
