@@ -277,6 +277,68 @@ inline __m256 interleave_high(__m256 re, __m256 im) { return _mm256_unpackhi_ps(
 inline __m256d interleave_low(__m256d re, __m256d im) { return _mm256_unpacklo_pd(re, im); }
 inline __m256d interleave_high(__m256d re, __m256d im) { return _mm256_unpackhi_pd(re, im); }
 #endif
+
+// The rows' gathers and scatters move 16-byte pieces of rows: a 16-byte register is one piece
+// (of one row), a 32-byte register two — at `first` in its low half and `first + apart` (another
+// row) in its high half. No shuffle crosses the two 128-bit halves of a 32-byte register: on
+// cores that split ymm operations in two (AMD Zen 1 and 2) a lane-crossing vperm2f128 costs
+// several times an in-half unpack, while a 128-bit load into either half (vinsertf128 from
+// memory) is as cheap as a plain load.
+#if SWELL_RADIX2_VECTOR_BYTES == 16
+inline __m128 load_pieces(const std::complex<float>* first, std::size_t) {
+  return _mm_loadu_ps(reinterpret_cast<const float*>(first));
+}
+inline __m128d load_pieces(const std::complex<double>* first, std::size_t) {
+  return _mm_loadu_pd(reinterpret_cast<const double*>(first));
+}
+inline void store_pieces(std::complex<float>* first, std::size_t, __m128 v) {
+  _mm_storeu_ps(reinterpret_cast<float*>(first), v);
+}
+inline void store_pieces(std::complex<double>* first, std::size_t, __m128d v) {
+  _mm_storeu_pd(reinterpret_cast<double*>(first), v);
+}
+#else
+inline __m256 load_pieces(const std::complex<float>* first, std::size_t apart) {
+  const __m128 l = _mm_loadu_ps(reinterpret_cast<const float*>(first));
+  const __m128 h = _mm_loadu_ps(reinterpret_cast<const float*>(first + apart));
+  return _mm256_insertf128_ps(_mm256_castps128_ps256(l), h, 1);
+}
+inline __m256d load_pieces(const std::complex<double>* first, std::size_t apart) {
+  const __m128d l = _mm_loadu_pd(reinterpret_cast<const double*>(first));
+  const __m128d h = _mm_loadu_pd(reinterpret_cast<const double*>(first + apart));
+  return _mm256_insertf128_pd(_mm256_castpd128_pd256(l), h, 1);
+}
+inline void store_pieces(std::complex<float>* first, std::size_t apart, __m256 v) {
+  _mm_storeu_ps(reinterpret_cast<float*>(first), _mm256_castps256_ps128(v));
+  _mm_storeu_ps(reinterpret_cast<float*>(first + apart), _mm256_extractf128_ps(v, 1));
+}
+inline void store_pieces(std::complex<double>* first, std::size_t apart, __m256d v) {
+  _mm_storeu_pd(reinterpret_cast<double*>(first), _mm256_castpd256_pd128(v));
+  _mm_storeu_pd(reinterpret_cast<double*>(first + apart), _mm256_extractf128_pd(v, 1));
+}
+#endif
+
+// The 4 × 4 transpose within each 128-bit half: lane i of v[c] ← lane c of v[i] (i, c < 4),
+// and with 32-byte registers likewise lanes 4 + i. An involution, so loads and stores share it.
+#if SWELL_RADIX2_VECTOR_BYTES == 16
+inline void transpose_halves(__m128 (&v)[4]) {
+  const __m128 t0 = _mm_unpacklo_ps(v[0], v[1]), t1 = _mm_unpackhi_ps(v[0], v[1]);
+  const __m128 t2 = _mm_unpacklo_ps(v[2], v[3]), t3 = _mm_unpackhi_ps(v[2], v[3]);
+  v[0] = _mm_shuffle_ps(t0, t2, 0x44);
+  v[1] = _mm_shuffle_ps(t0, t2, 0xEE);
+  v[2] = _mm_shuffle_ps(t1, t3, 0x44);
+  v[3] = _mm_shuffle_ps(t1, t3, 0xEE);
+}
+#else
+inline void transpose_halves(__m256 (&v)[4]) {
+  const __m256 t0 = _mm256_unpacklo_ps(v[0], v[1]), t1 = _mm256_unpackhi_ps(v[0], v[1]);
+  const __m256 t2 = _mm256_unpacklo_ps(v[2], v[3]), t3 = _mm256_unpackhi_ps(v[2], v[3]);
+  v[0] = _mm256_shuffle_ps(t0, t2, 0x44);
+  v[1] = _mm256_shuffle_ps(t0, t2, 0xEE);
+  v[2] = _mm256_shuffle_ps(t1, t3, 0x44);
+  v[3] = _mm256_shuffle_ps(t1, t3, 0xEE);
+}
+#endif
 #endif
 
 #if defined(__AVX512F__)
@@ -383,39 +445,6 @@ inline void transpose(Vec<double> (&v)[8]) {
   }
 }
 
-#elif defined(__AVX__)
-// 32-byte vectors (AVX, AVX2). No shuffle here crosses the two 128-bit halves of a register:
-// on cores that split ymm operations in two (AMD Zen 1 and 2) a lane-crossing vperm2f128 costs
-// several times an in-half unpack, while a 128-bit load into either half (vinsertf128 from
-// memory) is as cheap as a plain load. The rows' transposes load and store 16 bytes per row.
-inline __m256 load_halves(const std::complex<float>* low, const std::complex<float>* high) {
-  const __m128 l = _mm_loadu_ps(reinterpret_cast<const float*>(low));
-  const __m128 h = _mm_loadu_ps(reinterpret_cast<const float*>(high));
-  return _mm256_insertf128_ps(_mm256_castps128_ps256(l), h, 1);
-}
-inline __m256d load_halves(const std::complex<double>* low, const std::complex<double>* high) {
-  const __m128d l = _mm_loadu_pd(reinterpret_cast<const double*>(low));
-  const __m128d h = _mm_loadu_pd(reinterpret_cast<const double*>(high));
-  return _mm256_insertf128_pd(_mm256_castpd128_pd256(l), h, 1);
-}
-inline void store_halves(std::complex<float>* low, std::complex<float>* high, __m256 v) {
-  _mm_storeu_ps(reinterpret_cast<float*>(low), _mm256_castps256_ps128(v));
-  _mm_storeu_ps(reinterpret_cast<float*>(high), _mm256_extractf128_ps(v, 1));
-}
-inline void store_halves(std::complex<double>* low, std::complex<double>* high, __m256d v) {
-  _mm_storeu_pd(reinterpret_cast<double*>(low), _mm256_castpd256_pd128(v));
-  _mm_storeu_pd(reinterpret_cast<double*>(high), _mm256_extractf128_pd(v, 1));
-}
-// The 4 × 4 transpose within each 128-bit half: lane i of v[c] ← lane c of v[i] (i, c < 4),
-// and likewise lanes 4 + i. An involution, so loads and stores share it.
-inline void transpose_halves(__m256 (&v)[4]) {
-  const __m256 t0 = _mm256_unpacklo_ps(v[0], v[1]), t1 = _mm256_unpackhi_ps(v[0], v[1]);
-  const __m256 t2 = _mm256_unpacklo_ps(v[2], v[3]), t3 = _mm256_unpackhi_ps(v[2], v[3]);
-  v[0] = _mm256_shuffle_ps(t0, t2, 0x44);
-  v[1] = _mm256_shuffle_ps(t0, t2, 0xEE);
-  v[2] = _mm256_shuffle_ps(t1, t3, 0x44);
-  v[3] = _mm256_shuffle_ps(t1, t3, 0xEE);
-}
 #endif
 
 // L whole rows of length n: row l at src + l·n, written to dst + l·n (may equal src).
@@ -481,23 +510,26 @@ struct RowsIO {
 #pragma GCC unroll 16
     for (int l = 0; l < L; ++l) store_vec(dst + l * n + k, v[l]);
   }
-#elif defined(__AVX__)
-  // Lane i holds row i. fp32 (L = 8, samples k … k + 7, by pairs): the 16 bytes of a pair of
-  // samples of row i and of row i + 4 make one vector; the in-half transpose of four such
-  // vectors (rows 0–3 and 4–7) gives re and im of the pair across the 8 rows. fp64 (L = 4,
-  // samples k … k + 3, one at a time): one sample of rows i and i + 2 (i = 0, 1) make one
-  // vector; unpacking the two gives its re and im across the 4 rows.
+#elif defined(__SSE2__)
+  // Lane i holds row i; a register is loaded and stored as 16-byte pieces (load_pieces): one
+  // piece of one row (16-byte vectors), or of row i and row i + L/2 (32-byte vectors, AVX).
+  // fp32: a piece is a pair of samples, and the in-half 4 × 4 transpose of four registers
+  // (rows 0–3, with AVX also 4–7) gives re and im of the pair across the L rows. fp64: a piece
+  // is one sample, and the real and imaginary parts of two registers (rows 0 and 1, with AVX
+  // also 2 and 3) give its re and im across the L rows.
   //
   // Each load and store also prefetches the next line of its L rows (prefetch_next).
+  static constexpr std::size_t kPieceRowsApart = L / (SWELL_RADIX2_VECTOR_BYTES / 16);
   void load(int k, Cx<T>* x) const {
     prefetch_next(src, k, 0);
+    const std::size_t apart = kPieceRowsApart * n;
     if constexpr (sizeof(T) == 4) {
 #pragma GCC unroll 4
       for (int pair = 0; pair < kGroup / 2; ++pair) {
         const int m = k + 2 * pair;
-        __m256 v[4];
+        Reg<T> v[4];
 #pragma GCC unroll 4
-        for (int i = 0; i < 4; ++i) v[i] = load_halves(src + i * n + m, src + (i + 4) * n + m);
+        for (int i = 0; i < 4; ++i) v[i] = load_pieces(src + i * n + m, apart);
         transpose_halves(v);
         x[2 * pair] = {(Vec<T>)v[0], (Vec<T>)v[1]};
         x[2 * pair + 1] = {(Vec<T>)v[2], (Vec<T>)v[3]};
@@ -505,77 +537,30 @@ struct RowsIO {
     } else {
 #pragma GCC unroll 4
       for (int t = 0; t < kGroup; ++t) {
-        const __m256d a = load_halves(src + k + t, src + 2 * n + k + t);
-        const __m256d b = load_halves(src + n + k + t, src + 3 * n + k + t);
-        x[t] = {(Vec<T>)_mm256_unpacklo_pd(a, b), (Vec<T>)_mm256_unpackhi_pd(a, b)};
+        const Reg<T> a = load_pieces(src + k + t, apart), b = load_pieces(src + n + k + t, apart);
+        x[t] = {(Vec<T>)real_parts(a, b), (Vec<T>)imag_parts(a, b)};
       }
     }
   }
   void store(int k, const Cx<T>* x) const {
     prefetch_next(dst, k, 1);
+    const std::size_t apart = kPieceRowsApart * n;
     if constexpr (sizeof(T) == 4) {
 #pragma GCC unroll 4
       for (int pair = 0; pair < kGroup / 2; ++pair) {
         const int m = k + 2 * pair;
-        __m256 v[4] = {(__m256)x[2 * pair].re, (__m256)x[2 * pair].im, (__m256)x[2 * pair + 1].re,
-                       (__m256)x[2 * pair + 1].im};
+        Reg<T> v[4] = {(Reg<T>)x[2 * pair].re, (Reg<T>)x[2 * pair].im, (Reg<T>)x[2 * pair + 1].re,
+                       (Reg<T>)x[2 * pair + 1].im};
         transpose_halves(v);
 #pragma GCC unroll 4
-        for (int i = 0; i < 4; ++i) store_halves(dst + i * n + m, dst + (i + 4) * n + m, v[i]);
+        for (int i = 0; i < 4; ++i) store_pieces(dst + i * n + m, apart, v[i]);
       }
     } else {
 #pragma GCC unroll 4
       for (int t = 0; t < kGroup; ++t) {
-        const __m256d re = (__m256d)x[t].re, im = (__m256d)x[t].im;
-        store_halves(dst + k + t, dst + 2 * n + k + t, _mm256_unpacklo_pd(re, im));
-        store_halves(dst + n + k + t, dst + 3 * n + k + t, _mm256_unpackhi_pd(re, im));
-      }
-    }
-  }
-#elif defined(__SSE2__)
-  // 16-byte vectors, lane i holding row i. fp32 (L = 4): two samples of row i in one load; the
-  // 4 × 4 transpose of the four rows' loads gives re and im of both samples. fp64 (L = 2): one
-  // sample of each row a load; unpacking the two gives re and im.
-  void load(int k, Cx<T>* x) const {
-    prefetch_next(src, k, 0);
-    if constexpr (sizeof(T) == 4) {
-#pragma GCC unroll 4
-      for (int pair = 0; pair < kGroup / 2; ++pair) {
-        const int m = k + 2 * pair;
-        __m128 v0 = (__m128)load_vec(src + m), v1 = (__m128)load_vec(src + n + m);
-        __m128 v2 = (__m128)load_vec(src + 2 * n + m), v3 = (__m128)load_vec(src + 3 * n + m);
-        _MM_TRANSPOSE4_PS(v0, v1, v2, v3);
-        x[2 * pair] = {(Vec<T>)v0, (Vec<T>)v1};
-        x[2 * pair + 1] = {(Vec<T>)v2, (Vec<T>)v3};
-      }
-    } else {
-#pragma GCC unroll 4
-      for (int t = 0; t < kGroup; ++t) {
-        const __m128d a = (__m128d)load_vec(src + k + t), b = (__m128d)load_vec(src + n + k + t);
-        x[t] = {(Vec<T>)_mm_unpacklo_pd(a, b), (Vec<T>)_mm_unpackhi_pd(a, b)};
-      }
-    }
-  }
-  void store(int k, const Cx<T>* x) const {
-    prefetch_next(dst, k, 1);
-    if constexpr (sizeof(T) == 4) {
-#pragma GCC unroll 4
-      for (int pair = 0; pair < kGroup / 2; ++pair) {
-        const int m = k + 2 * pair;
-        __m128 v0 = (__m128)x[2 * pair].re, v1 = (__m128)x[2 * pair].im;
-        __m128 v2 = (__m128)x[2 * pair + 1].re, v3 = (__m128)x[2 * pair + 1].im;
-        _MM_TRANSPOSE4_PS(v0, v1, v2, v3);
-        store_vec(dst + m, (Vec<T>)v0);
-        store_vec(dst + n + m, (Vec<T>)v1);
-        store_vec(dst + 2 * n + m, (Vec<T>)v2);
-        store_vec(dst + 3 * n + m, (Vec<T>)v3);
-      }
-    } else {
-#pragma GCC unroll 4
-      for (int t = 0; t < kGroup; ++t) {
-        const __m128d re = (__m128d)x[t].re, im = (__m128d)x[t].im;
-        store_vec(dst + k + t, (Vec<T>)_mm_unpacklo_pd(re, im));
-        store_vec(dst + n + k + t, (Vec<T>)_mm_unpackhi_pd(re, im));
+        const Reg<T> re = (Reg<T>)x[t].re, im = (Reg<T>)x[t].im;
+        store_pieces(dst + k + t, apart, interleave_low(re, im));
+        store_pieces(dst + n + k + t, apart, interleave_high(re, im));
       }
     }
   }
