@@ -285,17 +285,13 @@ inline __m256d interleave_high(__m256d re, __m256d im) { return _mm256_unpackhi_
 // several times an in-half unpack, while a 128-bit load into either half (vinsertf128 from
 // memory) is as cheap as a plain load.
 #if SWELL_RADIX2_VECTOR_BYTES == 16
-inline __m128 load_pieces(const std::complex<float>* first, std::size_t) {
-  return _mm_loadu_ps(reinterpret_cast<const float*>(first));
+template <typename T>
+inline Reg<T> load_pieces(const std::complex<T>* first, std::size_t) {
+  return (Reg<T>)load_vec(first);
 }
-inline __m128d load_pieces(const std::complex<double>* first, std::size_t) {
-  return _mm_loadu_pd(reinterpret_cast<const double*>(first));
-}
-inline void store_pieces(std::complex<float>* first, std::size_t, __m128 v) {
-  _mm_storeu_ps(reinterpret_cast<float*>(first), v);
-}
-inline void store_pieces(std::complex<double>* first, std::size_t, __m128d v) {
-  _mm_storeu_pd(reinterpret_cast<double*>(first), v);
+template <typename T>
+inline void store_pieces(std::complex<T>* first, std::size_t, Reg<T> v) {
+  store_vec(first, (Vec<T>)v);
 }
 #else
 inline __m256 load_pieces(const std::complex<float>* first, std::size_t apart) {
@@ -747,8 +743,8 @@ void scatter_last(const std::array<IO, P> ios, const Cx<T>* __restrict x, int n,
 
 // P blocks of L signals each (P = 1, or kColumnBlocksTogether adjacent column blocks: 2 with
 // AVX, 4 with 16-byte vectors, so that a row's 128 bytes are used together, as AVX-512's one
-// block uses them), each with its own scratch; the gather and the scatter go step by step through the blocks, the middle stages
-// block by block.
+// block uses them), each with its own scratch; the gather and the scatter go step by step
+// through the blocks, the middle stages block by block.
 template <typename T, typename IO, int P>
 void transform_blocks(const std::array<IO, P> ios, const Axis<T>& axis, bool inverse) {
   const int n = axis.n;
