@@ -7,9 +7,11 @@
 // Counters: GFLOP/s by benchFFT's convention (5 N² log2 N² per complex transform, half for
 // c2r) and bytes/s (input + output); floor_fraction, the roofline: the time of the copy
 // benchmark below for the same arrays (measured in the same process right after, the best of
-// 5) over the transform's time — 1 would be a transform as fast as moving its data twice; for
-// vulkan, gearshifft's phases: device_seconds (the
-// transform's timestamps on the device, mean per iteration) and upload_seconds and
+// 5) over the transform's time — 1 would be a transform as fast as moving its data twice;
+// kernel_floor_fraction (radix2 c2c, one thread), the arithmetic roof: the time its butterflies
+// would take at the rate of radix2's fastest kernel alone in L1 (radix2_kernel.hpp, measured
+// right after too) over the transform's time; for vulkan, gearshifft's phases: device_seconds
+// (the transform's timestamps on the device, mean per iteration) and upload_seconds and
 // download_seconds (host ↔ device copies of the input and output, mean of 3 host executions).
 //
 //
@@ -34,6 +36,7 @@
 #include <vector>
 
 #include "bench_support.hpp"
+#include "swell/impls/radix2_kernel.hpp"
 #include "swell/impls/transform.hpp"
 #ifdef SWELL_HAVE_VULKAN
 #include "swell/impls/vulkan.hpp"
@@ -79,6 +82,14 @@ double copy_seconds(const TransformSpec& spec) {
     best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   return best;
+}
+
+// radix2's arithmetic roof for a c2c `spec` (one thread): its n² log2(n²)/2 butterflies at the
+// rate of its fastest kernel alone (radix2_kernel.hpp), measured now, in this process.
+double radix2_kernel_seconds(const TransformSpec& spec) {
+  const auto rate = measure_radix2_kernel_rate(spec.precision);
+  const double points = double(spec.nx) * spec.ny;
+  return points * std::log2(points) / 2 / rate.lanes * rate.seconds_per_vector_butterfly;
 }
 
 void run_copy(benchmark::State& state, TransformSpec spec) {
@@ -143,6 +154,9 @@ void run(benchmark::State& state, const std::string& impl, TransformSpec spec) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() /
         double(std::max<std::int64_t>(1, state.iterations()));
     state.counters["floor_fraction"] = copy_seconds(spec) / per_transform;
+    if (impl == "radix2" && spec.kind == Kind::c2c) {
+      state.counters["kernel_floor_fraction"] = radix2_kernel_seconds(spec) / per_transform;
+    }
   }
   const double n2 = double(spec.nx) * spec.ny;
   const double flops = (spec.kind == Kind::c2c ? 5.0 : 2.5) * n2 * std::log2(n2);

@@ -16,6 +16,7 @@
 #include <random>
 #include <thread>
 
+#include "swell/impls/radix2_kernel.hpp"
 #include "swell/impls/transform.hpp"
 #include "swell/validation/fft_invariants.hpp"
 #include "swell/validation/transform_checks.hpp"
@@ -136,6 +137,32 @@ TEST(Radix2, Fp32At2048SquaredWithinFiveTimesTenToTheMinusSeven) {
     std::printf("radix2 %s: relative L2 %.3g against %s\n", spec.describe().c_str(), r.rel_l2,
                 r.oracle.c_str());
     EXPECT_GT(r.rel_l2, 1e-8) << "no rounding at all: was anything compared?";
+  }
+}
+
+// The benchmarks' arithmetic roof for radix2 (radix2_kernel.hpp): a rate per vector of one
+// register's width (16, 32 or 64 bytes, the same for both precisions), a positive time below a
+// microsecond per vector butterfly (thousands of cycles: a broken count, not a slow machine), and
+// a clear refusal for a precision radix2 does not compute.
+TEST(Radix2, KernelRateIsPerRegisterWideVectorAndRefusesFp80) {
+  const auto f32 = measure_radix2_kernel_rate(Precision::f32, 3);
+  const auto f64 = measure_radix2_kernel_rate(Precision::f64, 3);
+  const int register_bytes = f32.lanes * int(sizeof(float));
+  std::printf("radix2 kernel: %d-byte vectors, fp32 %.3g ns, fp64 %.3g ns per vector butterfly\n",
+              register_bytes, f32.seconds_per_vector_butterfly * 1e9,
+              f64.seconds_per_vector_butterfly * 1e9);
+  EXPECT_TRUE(register_bytes == 16 || register_bytes == 32 || register_bytes == 64) << f32.lanes;
+  EXPECT_EQ(f64.lanes * int(sizeof(double)), register_bytes);
+  for (const auto& rate : {f32, f64}) {
+    EXPECT_TRUE(std::isfinite(rate.seconds_per_vector_butterfly));
+    EXPECT_GT(rate.seconds_per_vector_butterfly, 0.0);
+    EXPECT_LT(rate.seconds_per_vector_butterfly, 1e-6);
+  }
+  try {
+    measure_radix2_kernel_rate(Precision::f80);
+    ADD_FAILURE() << "fp80 accepted";
+  } catch (const swell::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("fp80"), std::string::npos) << e.what();
   }
 }
 
