@@ -381,25 +381,16 @@ TEST_P(EveryBackend, TwoThreadsComputeWhatOneDoes) {
   if (!one_thread->capabilities().multi_threaded) GTEST_SKIP() << GetParam() << " runs one thread";
   const auto two_threads =
       make_backend(name + (name.find(':') == std::string::npos ? ":" : ",") + "threads=2");
-  struct Shape {
-    int nx, ny, howmany;
-    Kind kind;
-    Direction direction;
-  };
-  for (const Shape& shape : {Shape{1024, 512, 1, Kind::c2c, Direction::forward},
-                             Shape{512, 1024, 1, Kind::c2c, Direction::inverse},
-                             Shape{4096, 128, 1, Kind::c2c, Direction::inverse},
-                             Shape{128, 4096, 1, Kind::c2c, Direction::forward},
-                             Shape{8192, 1, 64, Kind::c2c, Direction::inverse},
-                             Shape{1024, 1024, 1, Kind::r2c, Direction::forward},
-                             Shape{1024, 1024, 1, Kind::c2r, Direction::inverse}}) {
-    TransformSpec spec;
-    spec.nx = shape.nx;
-    spec.ny = shape.ny;
-    spec.howmany = shape.howmany;
-    spec.kind = shape.kind;
-    spec.direction = shape.direction;
-    const bool bit_for_bit = GetParam() == "radix2";
+  const bool bit_for_bit = GetParam() == "radix2";
+  using enum Kind;
+  using enum Direction;
+  for (TransformSpec spec : {TransformSpec{.nx = 1024, .ny = 512, .kind = c2c, .direction = forward},
+                             TransformSpec{.nx = 512, .ny = 1024, .kind = c2c, .direction = inverse},
+                             TransformSpec{.nx = 4096, .ny = 128, .kind = c2c, .direction = inverse},
+                             TransformSpec{.nx = 128, .ny = 4096, .kind = c2c, .direction = forward},
+                             TransformSpec{.nx = 8192, .howmany = 64, .kind = c2c, .direction = inverse},
+                             TransformSpec{.nx = 1024, .ny = 1024, .kind = r2c, .direction = forward},
+                             TransformSpec{.nx = 1024, .ny = 1024, .kind = c2r, .direction = inverse}}) {
     spec.precision = Precision::f32;
     expect_same_output<float>(*one_thread, *two_threads, spec, bit_for_bit);
     spec.precision = Precision::f64;
