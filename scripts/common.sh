@@ -10,7 +10,8 @@ SWELL_BUILD_DIR="${SWELL_BUILD_DIR:-$SWELL_ROOT/build}"
 # draws `swell report`'s figures at run time, is not a build dependency). The last line is
 # scripts/sanitize's: clang, its sanitizer and libFuzzer runtimes (only recommended by clang, so
 # named here) and its OpenMP. openmpi-bin and libopenmpi-dev: swell sweep under mpirun (the
-# default build is the MPI one; its tests run mpirun with 1 and 2 ranks).
+# default build is the MPI one; its tests run mpirun with 1 and 2 ranks). ccache: rebuilds after
+# a change recompile only what changed, even after a fresh configure (swell_compiler_launcher).
 SWELL_PACKAGES=(
   build-essential cmake pkg-config
   libfftw3-dev libgtest-dev libgmock-dev libbenchmark-dev libceres-dev libopenimageio-dev
@@ -22,6 +23,7 @@ SWELL_PACKAGES=(
   gnuplot-nox
   openmpi-bin libopenmpi-dev
   clang libclang-rt-14-dev libomp-14-dev
+  ccache
 )
 
 swell_install_packages() {
@@ -45,10 +47,29 @@ swell_install_packages() {
     "${missing[@]}"
 }
 
+# The CMake arguments that put ccache in front of the compilers, when it is installed.
+swell_compiler_launcher() {
+  if command -v ccache >/dev/null; then
+    echo "-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"
+  fi
+}
+
+# Configures <build dir> with <cmake arguments…> unless it already is; a build folder configured
+# before ccache was installed is configured again to use it.
+swell_configure() {
+  local build_dir="$1"
+  shift
+  local launcher
+  launcher="$(swell_compiler_launcher)"
+  if [ ! -f "$build_dir/CMakeCache.txt" ]; then
+    cmake -S "$SWELL_ROOT" -B "$build_dir" $launcher "$@"
+  elif [ -n "$launcher" ] && ! grep -q '^CMAKE_CXX_COMPILER_LAUNCHER:.*=ccache$' "$build_dir/CMakeCache.txt"; then
+    cmake -S "$SWELL_ROOT" -B "$build_dir" $launcher
+  fi
+}
+
 swell_build() {
   # Configure once; later calls rebuild only what changed.
-  if [ ! -f "$SWELL_BUILD_DIR/CMakeCache.txt" ]; then
-    cmake -S "$SWELL_ROOT" -B "$SWELL_BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
-  fi
+  swell_configure "$SWELL_BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
   cmake --build "$SWELL_BUILD_DIR" -j "$(nproc)"
 }

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <climits>
+#include <cstdint>
 #include <cstring>
 
 #ifdef __SSE2__
@@ -107,6 +109,49 @@ void undo_zip_filters(std::uint8_t* bytes, std::size_t size, std::uint8_t* out) 
     out[2 * p + 1] = odd[p];
   }
   if (size % 2) out[size - 1] = even[pairs];
+}
+
+std::optional<ImageHeader> read_exr_header(const std::string& file) {
+  const Context context(file);
+  const exr_const_context_t exr = context.get();
+  if (!exr) return std::nullopt;
+  int parts = 0;
+  exr_storage_t storage{};
+  exr_attr_box2i_t window{};
+  const exr_attr_chlist_t* list = nullptr;
+  if (exr_get_count(exr, &parts) != EXR_ERR_SUCCESS || parts != 1 ||
+      exr_get_storage(exr, 0, &storage) != EXR_ERR_SUCCESS ||
+      exr_get_data_window(exr, 0, &window) != EXR_ERR_SUCCESS ||
+      exr_get_channels(exr, 0, &list) != EXR_ERR_SUCCESS || !list) {
+    return std::nullopt;
+  }
+  ImageHeader header;
+  const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
+  const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+  if (width < 1 || height < 1 || width > INT32_MAX || height > INT32_MAX) return std::nullopt;
+  header.width = int(width);
+  header.height = int(height);
+  header.deep = storage == EXR_STORAGE_DEEP_SCANLINE || storage == EXR_STORAGE_DEEP_TILED;
+  for (int c = 0; c < list->num_channels; ++c) {
+    const exr_attr_chlist_entry_t& entry = list->entries[c];
+    if (entry.x_sampling != 1 || entry.y_sampling != 1) return std::nullopt;
+    header.channel_names.emplace_back(entry.name.str, std::size_t(entry.name.length));
+    switch (entry.pixel_type) {
+      case EXR_PIXEL_HALF:
+        header.channel_types.push_back(SampleType::half);
+        header.channel_type_names.push_back("half");
+        break;
+      case EXR_PIXEL_FLOAT:
+        header.channel_types.push_back(SampleType::float32);
+        header.channel_type_names.push_back("float");
+        break;
+      default:
+        header.channel_types.push_back(SampleType::other);
+        header.channel_type_names.push_back("uint");
+        break;
+    }
+  }
+  return header;
 }
 
 bool read_exr_scanlines(const std::string& file, const std::vector<std::string>& channels,

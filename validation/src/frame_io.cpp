@@ -1,8 +1,8 @@
-// Frames on disk (docs/case_files.md §Frames): EXR and TIFF through OpenImageIO, .npy through
-// npy.hpp, headerless .raw. Readers check everything against the case and name the file.
+// Frames on disk (docs/case_files.md §Frames): images (EXR, TIFF, PNG) through
+// image_frames.hpp, .npy through npy.hpp, headerless .raw; file patterns and frame sequences.
+// Readers check everything against the case and name the file.
 #include "swell/validation/frame_io.hpp"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -19,7 +19,7 @@
 #include <sstream>
 #include <thread>
 
-#include "exr_scanlines.hpp"
+#include "image_frames.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/validation/npy.hpp"
 
@@ -32,13 +32,9 @@ using reference::FieldFrame;
 using reference::FrameSequence;
 using reference::Grid;
 
-// Unit roundoff of the stored number types (conventions: the floor the checks cannot go below).
-constexpr double kHalfRoundoff = 0x1p-11;
-constexpr double kFloatRoundoff = 0x1p-24;
-constexpr double kDoubleRoundoff = 0x1p-53;
-
-// TIFF has no channel names; swell keeps them in the ImageDescription tag after this prefix.
-constexpr const char* kTiffChannelsPrefix = "swell channels:";
+using detail::fail_non_finite;
+using detail::kDoubleRoundoff;
+using detail::kFloatRoundoff;
 
 enum class StoredFormat { exr, tiff, png, npy, raw };
 
@@ -61,6 +57,12 @@ StoredFormat stored_format_of(const std::string& pattern, const std::string& ori
 
 bool one_file_per_field(StoredFormat format) {
   return format == StoredFormat::npy || format == StoredFormat::raw;
+}
+
+detail::ImageKind image_kind_of(StoredFormat format) {
+  return format == StoredFormat::exr    ? detail::ImageKind::exr
+         : format == StoredFormat::tiff ? detail::ImageKind::tiff
+                                        : detail::ImageKind::png;
 }
 
 // A printf pattern with at most one integer conversion, taken apart.
@@ -133,30 +135,6 @@ std::string with_suffix(const std::string& file, const std::string& suffix) {
   return path.replace_filename(name).string();
 }
 
-double roundoff_of(OIIO::TypeDesc type) {
-  switch (type.basetype) {
-    case OIIO::TypeDesc::HALF: return kHalfRoundoff;
-    case OIIO::TypeDesc::FLOAT: return kFloatRoundoff;
-    case OIIO::TypeDesc::DOUBLE: return kDoubleRoundoff;
-    default: return 0;  // not a floating-point type
-  }
-}
-
-std::string describe_field(Field field, const std::string& channel) {
-  return fmt::format("{} ({})", reference::field_name(field), channel);
-}
-
-// The message for a field with `count` non-finite samples, the first at flat index `at`.
-[[noreturn]] void fail_non_finite(const Grid& grid, const std::string& file, const std::string& what,
-                                  std::size_t at, double value, std::size_t count) {
-  const std::size_t i = at % static_cast<std::size_t>(grid.nx);
-  const std::size_t j = at / static_cast<std::size_t>(grid.nx);
-  throw InvalidInput(fmt::format("{}: {} is {} at (i, j) = ({}, {}) ({} non-finite value{} in "
-                                 "all); every value must be finite",
-                                 file, what, std::isnan(value) ? "NaN" : (value > 0 ? "+Inf" : "-Inf"),
-                                 i, j, count, count == 1 ? "" : "s"));
-}
-
 // NaN or ±Inf anywhere: the first bad sample, by (i, j) (i along x).
 void require_finite(const std::vector<double>& values, const Grid& grid, const std::string& file,
                     const std::string& what) {
@@ -166,272 +144,6 @@ void require_finite(const std::vector<double>& values, const Grid& grid, const s
     for (double x : values) count += std::isfinite(x) ? 0 : 1;
     fail_non_finite(grid, file, what, k, values[k], count);
   }
-}
-
-// ------------------------------------------------------------------ reading images
-
-// Channel index of each requested field in an image with these channel names.
-std::map<Field, int> locate_channels(const std::string& file, StoredFormat format,
-                                     const OIIO::ImageSpec& spec,
-                                     const std::map<Field, std::string>& channels) {
-  std::vector<std::string> names(spec.channelnames.begin(), spec.channelnames.end());
-  bool named_by_swell = false;
-  if (format == StoredFormat::tiff) {
-    const std::string description = spec.get_string_attribute("ImageDescription");
-    if (description.rfind(kTiffChannelsPrefix, 0) == 0) {
-      std::vector<std::string> stored;
-      std::istringstream words(description.substr(std::strlen(kTiffChannelsPrefix)));
-      for (std::string word; words >> word;) stored.push_back(word);
-      if (stored.size() == names.size()) {
-        names = stored;
-        named_by_swell = true;
-      }
-    }
-  }
-  auto list = [&] {
-    std::string out;
-    for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
-    return out;
-  };
-
-  std::map<Field, int> found;
-  for (const auto& [field, channel] : channels) {
-    const auto it = std::find(names.begin(), names.end(), channel);
-    if (it != names.end()) found[field] = static_cast<int>(it - names.begin());
-  }
-  if (found.size() == channels.size()) return found;
-
-  // A TIFF from another writer, and any PNG, has no channel names of its own (OpenImageIO
-  // calls them Y, or R, G, B, A, channel4, …): when none of the names match and the channel
-  // count equals the number of fields listed, the fields are taken by position in swell's order
-  // h, sx, sy, dx, dy, J.
-  if ((format == StoredFormat::tiff || format == StoredFormat::png) && !named_by_swell &&
-      found.empty() &&
-      static_cast<int>(channels.size()) == spec.nchannels) {
-    int position = 0;
-    for (Field field : reference::kAllFields) {
-      if (channels.count(field)) found[field] = position++;
-    }
-    return found;
-  }
-  for (const auto& [field, channel] : channels) {
-    if (found.count(field)) continue;
-    throw InvalidInput(fmt::format("{}: missing channel '{}' for {} (the file has {} channel{}: "
-                                   "{})",
-                                   file, channel, reference::field_name(field), spec.nchannels,
-                                   spec.nchannels == 1 ? "" : "s", list()));
-  }
-  return found;  // unreachable: some field was missing
-}
-
-// The interleaved pixels of one image read, kept by each reading thread from one frame to the
-// next: a fresh array per frame (6 MiB at 512² with six float channels, above malloc's mmap
-// threshold) was mapped, faulted in page by page and unmapped again on every frame.
-struct PixelScratch {
-  std::vector<float> f32;
-  std::vector<double> f64;
-  detail::ExrScratch exr;
-};
-
-// Reads the fields of one image into `frame` and returns their unit roundoff. The rounding of
-// a field stored as integers: a uniform quantization error of step q = (high − low)/levels,
-// variance q²/12, white — as a unit roundoff u relative to the field's rms (the checks'
-// rounding budget is u² mean(v²), conventions §Tolerances), u = q/√(12 mean v²).
-double read_image_frame(const fs::path& path, StoredFormat format, const Grid& grid,
-                        const InputSpec& input, const std::function<bool(Field)>& keep,
-                        FieldFrame& frame, PixelScratch& scratch) {
-  const std::string file = path.string();
-  const auto& channels = input.channels;
-  // Keep the bytes of a TIFF or PNG with unassociated alpha as stored (no premultiplication).
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto image = OIIO::ImageInput::open(file, &config);
-  if (!image) {
-    std::string why = OIIO::geterror();
-    if (why.empty()) why = "unknown error";
-    throw InvalidInput(fmt::format("{}: cannot read the image: {}", file, why));
-  }
-  const OIIO::ImageSpec& spec = image->spec();
-  if (spec.deep) throw InvalidInput(file + ": deep images are not supported");
-  if (spec.width != grid.nx || spec.height != grid.ny || spec.depth != 1) {
-    throw InvalidInput(fmt::format("{}: wrong size: {}×{}{} pixels, the case's grid is {}×{} "
-                                   "([grid] n)",
-                                   file, spec.width, spec.height,
-                                   spec.depth != 1 ? fmt::format("×{}", spec.depth) : "", grid.nx,
-                                   grid.ny));
-  }
-  const auto located = locate_channels(file, format, spec, channels);
-  const std::size_t count = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny);
-  double roundoff = 0;
-  int first = spec.nchannels, last = -1;
-  bool all_float = true;
-  std::map<Field, double> integer_levels;  // 255 or 65535 for a field stored as integers
-  for (const auto& [field, index] : located) {
-    const OIIO::TypeDesc type = spec.channelformat(index);
-    const std::string& name = spec.channelnames[index];
-    const bool has_range = input.value_ranges.count(field) > 0;
-    const double u = roundoff_of(type);
-    if (u > 0) {
-      if (has_range) {
-        throw InvalidInput(fmt::format("{}: channel '{}' for {} stores {} floating-point values, "
-                                       "which need no [input] value_range (it is for 8- and "
-                                       "16-bit integer images); remove it",
-                                       file, name, reference::field_name(field), type.c_str()));
-      }
-      roundoff = std::max(roundoff, u);
-      all_float = all_float && type.basetype != OIIO::TypeDesc::DOUBLE;
-    } else if (type.basetype == OIIO::TypeDesc::UINT8 || type.basetype == OIIO::TypeDesc::UINT16) {
-      const double levels = type.basetype == OIIO::TypeDesc::UINT8 ? 255.0 : 65535.0;
-      if (!has_range) {
-        throw InvalidInput(fmt::format("{}: channel '{}' for {} stores {}-bit integers, which carry "
-                                       "no unit: give [input] value_range = [low, high], the "
-                                       "values (metres) that pixel 0 and pixel {} stand for "
-                                       "(docs/case_files.md)",
-                                       file, name, reference::field_name(field),
-                                       levels == 255.0 ? 8 : 16, levels));
-      }
-      integer_levels[field] = levels;
-    } else {
-      throw InvalidInput(fmt::format("{}: channel '{}' for {} stores {} values; swell reads "
-                                     "floating-point channels (half, float, double) and 8- or "
-                                     "16-bit unsigned integers with [input] value_range",
-                                     file, name, reference::field_name(field), type.c_str()));
-    }
-    first = std::min(first, index);
-    last = std::max(last, index);
-  }
-  // Every channel from the first wanted to the last in one read: a compressed file (EXR ZIP
-  // blocks hold all channels of 16 scanlines) is then decompressed once, not once per field.
-  // Half, float and integer values (OpenImageIO scales 8- and 16-bit integers to [0, 1]) are
-  // exact in float, which halves the buffer; double stays double. The whole image in one
-  // read: OpenEXR then decodes its blocks on all of its threads (reading bands of ~85 rows
-  // instead, to keep the buffer in cache, made gate/512/64 0.15–0.2 s slower).
-  const int span = last - first + 1;
-  auto read_all = [&](auto* buffer, OIIO::TypeDesc type) {
-    const bool ok = image->read_image(0, 0, first, last + 1, type, buffer);
-    // OpenImageIO's TIFF reader returns true for a strip it could not read, with the error
-    // pending (and garbage in the buffer): an error message counts as a failure too.
-    std::string why = image->geterror();
-    if (!ok || !why.empty()) {
-      if (why.empty()) why = "unknown error";
-      std::string names;
-      for (int c = first; c <= last; ++c) {
-        names += (names.empty() ? "'" : ", '") + spec.channelnames[c] + "'";
-      }
-      throw InvalidInput(fmt::format("{}: cannot read channel{} {} (truncated or corrupt file?): "
-                                     "{}",
-                                     file, span == 1 ? "" : "s", names, why));
-    }
-  };
-  // Per field: its values when kept (or stored as integers, whose rms sets the rounding), and
-  // its non-finite samples: how many, and the first.
-  struct Taken {
-    Field field = Field::height;
-    std::size_t offset = 0;
-    bool kept = true;
-    const IntegerRange* range = nullptr;
-    double levels = 0;
-    std::vector<double> values;
-    std::size_t bad = 0, first_bad = 0;
-    double first_bad_value = 0;
-  };
-  std::vector<Taken> taken;
-  for (const auto& [field, index] : located) {
-    Taken t;
-    t.field = field;
-    t.offset = static_cast<std::size_t>(index - first);
-    t.kept = !keep || keep(field);
-    if (const auto levels = integer_levels.find(field); levels != integer_levels.end()) {
-      t.range = &input.value_ranges.at(field);
-      t.levels = levels->second;
-    }
-    if (t.kept || t.range) t.values.resize(count);
-    taken.push_back(std::move(t));
-  }
-  auto take = [&](auto& buffer, OIIO::TypeDesc type) {
-    buffer.resize(count * span);
-    read_all(buffer.data(), type);
-    for (Taken& t : taken) {
-      const auto* pixels = buffer.data() + t.offset;
-      if (t.range) {
-        const double width = t.range->high - t.range->low;
-        for (std::size_t k = 0; k < count; ++k) t.values[k] = t.range->low + width * pixels[k * span];
-        continue;  // integers are finite
-      }
-      bool finite = true;
-      if (t.kept) {
-        for (std::size_t k = 0; k < count; ++k) {
-          const double v = pixels[k * span];
-          t.values[k] = v;
-          finite &= std::isfinite(v);
-        }
-      } else {
-        for (std::size_t k = 0; k < count; ++k) finite &= std::isfinite(pixels[k * span]);
-      }
-      if (finite) continue;
-      for (std::size_t k = 0; k < count; ++k) {
-        const double v = pixels[k * span];
-        if (std::isfinite(v)) continue;
-        if (t.bad++ == 0) {
-          t.first_bad = k;
-          t.first_bad_value = v;
-        }
-      }
-    }
-  };
-  // A scanline EXR goes from its blocks straight into the fields, a line at a time
-  // (exr_scanlines.hpp: 11 ms a frame of 512² with six float channels, against ~40 ms through
-  // OpenImageIO, one thread each); whatever that reader does not take, OpenImageIO
-  // reads whole below.
-  bool direct = false;
-  if (format == StoredFormat::exr && all_float && integer_levels.empty()) {
-    std::vector<std::string> names;  // taken[k]'s channel is names[k]
-    for (const auto& [field, index] : located) names.push_back(spec.channelnames[index]);
-    const std::size_t width = std::size_t(grid.nx);
-    direct = detail::read_exr_scanlines(
-        file, names, grid.nx, grid.ny,
-        [&](std::size_t slot, std::size_t row, const float* values) {
-          Taken& t = taken[slot];
-          const std::size_t start = row * width;
-          // |v| ≤ FLT_MAX is false for ±∞ and NaN; an integer OR of it vectorizes (a bool &=
-          // of std::isfinite did not: 3.5 % of the gate's CPU).
-          constexpr float kLargest = std::numeric_limits<float>::max();
-          int non_finite = 0;
-          if (t.kept) {
-            double* out = t.values.data() + start;
-            for (std::size_t x = 0; x < width; ++x) {
-              out[x] = values[x];
-              non_finite |= !(std::fabs(values[x]) <= kLargest);
-            }
-          } else {
-            for (std::size_t x = 0; x < width; ++x) non_finite |= !(std::fabs(values[x]) <= kLargest);
-          }
-          if (!non_finite) return;
-          for (std::size_t x = 0; x < width; ++x) {
-            if (std::isfinite(values[x])) continue;
-            if (t.bad++ == 0) {  // rows arrive in order: the first is the lowest index
-              t.first_bad = start + x;
-              t.first_bad_value = values[x];
-            }
-          }
-        },
-        scratch.exr);
-    if (!direct) {
-      for (Taken& t : taken) t.bad = 0;  // counted again by the read below
-    }
-  }
-  if (!direct && all_float) take(scratch.f32, OIIO::TypeDesc::FLOAT);
-  if (!direct && !all_float) take(scratch.f64, OIIO::TypeDesc::DOUBLE);
-  image->close();
-  for (Taken& t : taken) {
-    if (t.bad > 0) {
-      fail_non_finite(grid, file, describe_field(t.field, channels.at(t.field)), t.first_bad,
-                      t.first_bad_value, t.bad);
-    }
-    if (t.range) roundoff = std::max(roundoff, quantization_roundoff(*t.range, t.levels, t.values));
-    if (t.kept) frame.fields[t.field] = std::move(t.values);
-  }
-  return roundoff;
 }
 
 // ------------------------------------------------------------------ reading arrays
@@ -545,123 +257,6 @@ std::string extension_of(FrameFormat format) {
 
 constexpr const char* kWritePattern = "frame_%04d";
 
-// PNG holds 1 to 4 channels, named by their count as OpenImageIO reads them back.
-std::vector<std::string> png_channel_names(std::size_t count) {
-  switch (count) {
-    case 1: return {"Y"};
-    case 2: return {"Y", "A"};
-    case 3: return {"R", "G", "B"};
-    case 4: return {"R", "G", "B", "A"};
-    default:
-      throw InvalidInput(fmt::format("a PNG holds at most 4 channels; {} fields were given (write "
-                                     "EXR, TIFF or .npy for more)",
-                                     count));
-  }
-}
-
-void require_png_options(const FrameWriteOptions& options) {
-  if (options.png_bits != 8 && options.png_bits != 16) {
-    throw InvalidInput(fmt::format("PNG frames are 8- or 16-bit (got {} bits)", options.png_bits));
-  }
-  const IntegerRange& range = options.png_range;
-  if (!(std::isfinite(range.low) && std::isfinite(range.high) && range.low < range.high)) {
-    throw InvalidInput(fmt::format("PNG frames need a value range [low, high] with low < high, "
-                                   "both finite (got [{:g}, {:g}])",
-                                   range.low, range.high));
-  }
-}
-
-std::vector<fs::path> write_image_frame(const fs::path& path, const Grid& grid,
-                                        const std::vector<Field>& fields, const FieldFrame& frame,
-                                        const FrameWriteOptions& options) {
-  const std::string file = path.string();
-  const bool png = options.format == FrameFormat::png;
-  auto output = OIIO::ImageOutput::create(file);
-  if (!output) {
-    throw InvalidInput(fmt::format("{}: cannot write: {}", file, OIIO::geterror()));
-  }
-  const int channels = static_cast<int>(fields.size());
-  const OIIO::TypeDesc type = !png                   ? OIIO::TypeDesc::FLOAT
-                             : options.png_bits == 8 ? OIIO::TypeDesc::UINT8
-                                                     : OIIO::TypeDesc::UINT16;
-  const double top = options.png_bits == 8 ? 255.0 : 65535.0;
-  OIIO::ImageSpec spec(grid.nx, grid.ny, channels, type);
-  spec.channelnames.clear();
-  std::string names;
-  const auto png_names = png ? png_channel_names(fields.size()) : std::vector<std::string>{};
-  for (std::size_t c = 0; c < fields.size(); ++c) {
-    spec.channelnames.push_back(png ? png_names[c] : reference::channel_name(fields[c]));
-    names += " " + reference::channel_name(fields[c]);
-  }
-  spec.alpha_channel = -1;  // no channel is alpha: nothing may be premultiplied
-  if (!png) spec.attribute("compression", "zip");  // lossless in both formats
-  if (options.format == FrameFormat::tiff) {
-    spec.attribute("ImageDescription", kTiffChannelsPrefix + names);
-  }
-  spec.attribute("Software", "swell");
-  // A PNG pixel is round((v − low)/(high − low) · top), top = 2^bits − 1; a value outside
-  // [low, high] (by more than half a step) has no pixel and is an error, never clipped. Every
-  // value is checked before the file is created, so a refusal leaves no file. 8-bit pixels go
-  // to OpenImageIO as 16-bit values p·257, which it stores back as p exactly.
-  const IntegerRange range = options.png_range;
-  auto pixel = [&](double v) { return std::nearbyint((v - range.low) / (range.high - range.low) * top); };
-  if (png) {
-    for (const Field field : fields) {
-      const auto& values = frame.fields.at(field);
-      for (std::size_t p = 0; p < values.size(); ++p) {
-        const double level = pixel(values[p]);
-        if (level >= 0 && level <= top) continue;
-        throw InvalidInput(fmt::format("{}: {} = {:g} at (i, j) = ({}, {}) lies outside the PNG "
-                                       "value range [{:g}, {:g}]",
-                                       file, reference::field_name(field), values[p],
-                                       p % grid.nx, p / grid.nx, range.low, range.high));
-      }
-    }
-  }
-  if (!output->open(file, spec)) {
-    throw InvalidInput(fmt::format("{}: cannot write: {}", file, output->geterror()));
-  }
-  auto pixel_of = [&](double v) -> std::uint16_t {
-    const double p = pixel(v);  // in [0, top]: checked above
-    return static_cast<std::uint16_t>(top == 255.0 ? p * 257 : p);
-  };
-  // Interleaved rows, a block at a time, so that a large frame never needs a second copy.
-  const std::size_t nx = static_cast<std::size_t>(grid.nx);
-  const int rows_per_block = std::max(1, static_cast<int>((1u << 20) / (nx * fields.size())));
-  std::vector<float> block;
-  std::vector<std::uint16_t> pixels;
-  for (int y0 = 0; y0 < grid.ny; y0 += rows_per_block) {
-    const int y1 = std::min(grid.ny, y0 + rows_per_block);
-    const std::size_t size = static_cast<std::size_t>(y1 - y0) * nx * fields.size();
-    if (png) {
-      pixels.assign(size, 0);
-    } else {
-      block.assign(size, 0.0f);
-    }
-    for (std::size_t c = 0; c < fields.size(); ++c) {
-      const auto& values = frame.fields.at(fields[c]);
-      for (int y = y0; y < y1; ++y) {
-        for (std::size_t x = 0; x < nx; ++x) {
-          const double v = values[static_cast<std::size_t>(y) * nx + x];
-          const std::size_t at = ((y - y0) * nx + x) * fields.size() + c;
-          if (png) {
-            pixels[at] = pixel_of(v);
-          } else {
-            block[at] = static_cast<float>(v);
-          }
-        }
-      }
-    }
-    const bool ok = png ? output->write_scanlines(y0, y1, 0, OIIO::TypeDesc::UINT16, pixels.data())
-                        : output->write_scanlines(y0, y1, 0, type, block.data());
-    if (!ok) throw InvalidInput(fmt::format("{}: write failed: {}", file, output->geterror()));
-  }
-  if (!output->close()) {
-    throw InvalidInput(fmt::format("{}: write failed: {}", file, output->geterror()));
-  }
-  return {path};
-}
-
 // A grid's field as a (ny, nx) array; a lattice's (grid.ny == 0, the case's own grid) as (N,).
 template <typename Real>
 NpyArray npy_of(const Grid& grid, const std::vector<double>& real, const std::vector<double>* imaginary) {
@@ -726,7 +321,7 @@ InputSpec frame_input_spec(const std::vector<Field>& fields, const FrameWriteOpt
   for (Field field : reference::kAllFields) {
     if (std::find(fields.begin(), fields.end(), field) != fields.end()) ordered.push_back(field);
   }
-  const auto names = png_channel_names(ordered.size());
+  const auto names = detail::png_channel_names(ordered.size());
   for (std::size_t c = 0; c < ordered.size(); ++c) {
     spec.channels[ordered[c]] = names[c];
     spec.value_ranges[ordered[c]] = options.png_range;
@@ -768,8 +363,8 @@ std::vector<fs::path> write_frame(const fs::path& directory, const Grid& grid,
     fields.push_back(field);
   }
   if (options.format == FrameFormat::png) {
-    require_png_options(options);
-    (void)png_channel_names(fields.size());  // at most 4 fields
+    detail::require_png_options(options);
+    (void)detail::png_channel_names(fields.size());  // at most 4 fields
   }
   if (options.format != FrameFormat::npy) {
     if (options.float64) {
@@ -791,7 +386,7 @@ std::vector<fs::path> write_frame(const fs::path& directory, const Grid& grid,
 
   const std::string name = frame_file_name(std::string(kWritePattern) + extension_of(options.format), index);
   if (options.format != FrameFormat::npy) {
-    return write_image_frame(directory / name, grid, fields, frame, options);
+    return detail::write_image_frame(directory / name, grid, fields, frame, options);
   }
   std::vector<fs::path> written;
   for (Field field : fields) {
@@ -826,7 +421,7 @@ InputSpec write_frames(const fs::path& directory, const FrameSequence& frames,
 }
 
 reference::FrameSequence read_frames(const CaseFile& case_file, const std::string& pattern_override,
-                                     const FieldFilter& keep) {
+                                     const FieldFilter& keep, int threads) {
   const auto& ocean = case_file.ocean;
   const auto& input = case_file.input;
   const std::string origin = pattern_override.empty() ? "[input] files" : "--input";
@@ -845,12 +440,6 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
                                      reference::field_name(field)));
     }
   }
-  // OpenImageIO's EXR reader on OpenEXRCore: the classic one converts each float of an
-  // interleaved multi-channel read byte by byte (Xdr), which made reading six fields of 64
-  // frames of 512² take 0.4 s of CPU more than reading one; through the core it costs about
-  // the same as one field (bench gate/512/64).
-  static const bool use_openexr_core = OIIO::attribute("openexr:core", 1);
-  (void)use_openexr_core;
   const std::string pattern =
       pattern_override.empty() ? (case_file.directory / input.files).string() : pattern_override;
   const StoredFormat format = stored_format_of(pattern, origin);
@@ -884,7 +473,13 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
   sequence.grid = ocean.grid;
   sequence.lattice = ocean.lattice;
   const Field first_field = input.channels.begin()->first;
-  auto read_frame = [&](int f, FieldFrame& frame, PixelScratch& scratch) {
+  // Frames are independent files: read on `threads` threads (0: every hardware thread), each
+  // taking every T-th frame; what threads are left over decode within a file. The error
+  // reported is that of the lowest frame that failed, as a sequential read would report it.
+  const int all_threads = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  const int reading_threads = std::clamp(all_threads, 1, std::max(1, ocean.frames));
+  const int threads_per_file = std::max(1, all_threads / reading_threads);
+  auto read_frame = [&](int f, FieldFrame& frame, detail::PixelScratch& scratch) {
     double roundoff = 0;
     const std::function<bool(Field)> keep_here = [&](Field field) { return !keep || keep(f, field); };
     frame.time = ocean.time(f);
@@ -907,7 +502,8 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
         case StoredFormat::exr:
         case StoredFormat::tiff:
         case StoredFormat::png:
-          u = read_image_frame(path, format, grid, input, keep_here, frame, scratch);
+          u = detail::read_image_frame(path, image_kind_of(format), grid, input, keep_here, frame,
+                                       scratch, threads_per_file);
           break;
         case StoredFormat::npy: u = read_npy_field(path, grid, field, frame, lattice); break;
         case StoredFormat::raw: u = read_raw_field(path, grid, field, input.raw_type, frame); break;
@@ -923,19 +519,12 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
     }
     return roundoff;
   };
-  // Frames are independent files: read on as many threads as OpenImageIO's "threads"
-  // attribute says (default: every hardware thread; swell gate --threads sets it), each thread
-  // taking every T-th frame. The error reported is that of the lowest frame that failed, as a
-  // sequential read would report it.
-  int threads = 1;
-  OIIO::getattribute("threads", threads);
-  threads = std::clamp(threads, 1, std::max(1, ocean.frames));
   sequence.frames.resize(static_cast<std::size_t>(ocean.frames));
   std::vector<double> roundoffs(sequence.frames.size(), 0.0);
   std::vector<std::exception_ptr> errors(sequence.frames.size());
   auto work = [&](int first) {
-    PixelScratch scratch;
-    for (int f = first; f < ocean.frames; f += threads) {
+    detail::PixelScratch scratch;
+    for (int f = first; f < ocean.frames; f += reading_threads) {
       try {
         roundoffs[f] = read_frame(f, sequence.frames[f], scratch);
       } catch (...) {
@@ -944,11 +533,11 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
       }
     }
   };
-  if (threads == 1) {
+  if (reading_threads == 1) {
     work(0);
   } else {
     std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+    for (int t = 1; t < reading_threads; ++t) pool.emplace_back(work, t);
     work(0);
     for (auto& thread : pool) thread.join();
   }

@@ -3,7 +3,6 @@
 // for a terminal, as JSON and as JUnit XML for CI systems.
 #include "swell/validation/gate.hpp"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -229,13 +228,15 @@ struct GateFrames {
   reference::FrameSequence all, ends;
 };
 
-GateFrames read_gate_frames(const CaseFile& case_file, const std::string& pattern_override) {
+GateFrames read_gate_frames(const CaseFile& case_file, const std::string& pattern_override,
+                            int threads) {
   const int count = case_file.ocean.frames;
   const bool has_height = case_file.input.channels.count(Field::height) > 0;
   GateFrames out;
-  out.all = read_frames(case_file, pattern_override, [&](int frame, Field field) {
+  const auto keep = [&](int frame, Field field) {
     return !has_height || field == Field::height || frame == 0 || frame == count - 1;
-  });
+  };
+  out.all = read_frames(case_file, pattern_override, keep, threads);
   out.ends.grid = out.all.grid;
   out.ends.lattice = out.all.lattice;
   out.ends.unit_roundoff = out.all.unit_roundoff;
@@ -508,8 +509,6 @@ GateReport run_gate(const std::filesystem::path& case_path, const GateOptions& o
       throw InvalidInput("--input replaces a single surface's [input] files; a cascade set names "
                          "each cascade's frames in its [[cascade]] table and the sum's in [sum]");
     }
-    OIIO::attribute("threads", threads);
-    OIIO::attribute("exr_threads", threads);
     std::vector<reference::FrameSequence> all(case_file.cascades.size()),
         ends(case_file.cascades.size());
     auto read_surface = [&](const reference::OceanCase& ocean, const InputSpec& input,
@@ -522,7 +521,7 @@ GateReport run_gate(const std::filesystem::path& case_path, const GateOptions& o
       reference::require_valid_sampling(ocean, reference::kFloat64);
       report_progress(options, fmt::format("reading {} frame{} on a {}…", ocean.frames,
                                            ocean.frames == 1 ? "" : "s", sampling.describe()));
-      GateFrames read = read_gate_frames(surface, "");
+      GateFrames read = read_gate_frames(surface, "", threads);
       frames = std::move(read.all);
       end = std::move(read.ends);
     };
@@ -563,14 +562,10 @@ GateReport run_gate(const std::filesystem::path& case_path, const GateOptions& o
   std::vector<double> travelling =
       expected_travelling_power(*case_file.ocean.directional_spectrum(), sampling, threads);
   reference::require_valid_sampling(case_file.ocean, reference::kFloat64, 0, "", &travelling);
-  // Frames are read on OpenImageIO's "threads" (read_frames reads frames in parallel), and
-  // OpenEXR decompresses a file's blocks on its own pool.
-  OIIO::attribute("threads", threads);
-  OIIO::attribute("exr_threads", threads);
   report_progress(options,
                   fmt::format("reading {} frame{} on a {}…", case_file.ocean.frames,
                               case_file.ocean.frames == 1 ? "" : "s", sampling.describe()));
-  const GateFrames frames = read_gate_frames(case_file, options.input_pattern);
+  const GateFrames frames = read_gate_frames(case_file, options.input_pattern, threads);
   const double reading = seconds_since(start);
   GateReport report = judge(case_file, frames.all, frames.ends, options, start,
                             std::numeric_limits<double>::quiet_NaN(), std::move(travelling));

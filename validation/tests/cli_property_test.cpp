@@ -12,18 +12,22 @@
 //   anything else — exit 1 or 3, a signal, a sanitizer report, a command past its time limit —
 //                   fails, printing the seed and the command line that reproduces it.
 //
-// SWELL_PROPERTY_CASES (default 40) and SWELL_PROPERTY_SEED (default 20261201) choose the run;
-// the long run (label calibration) draws 400 cases from another seed.
+// SWELL_PROPERTY_CASES (default 40) and SWELL_PROPERTY_SEED (default 20261201) choose the run,
+// the same cases on every run of the suite. The soak run (ctest label soak, scripts/test --full)
+// draws 400 cases from a fresh first seed each time (SWELL_PROPERTY_LONG_SEED fixes it) and
+// prints it; every problem found prints the one command that replays its case.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <boost/math/distributions/binomial.hpp>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -216,12 +220,22 @@ std::string refusal_topic(const std::string& output) {
 // 64²; 60 s is ten times the slowest seen, under sanitizers too.
 constexpr int kCommandSeconds = 120;
 
+// The command that runs the one drawn case `seed` again, as the suite's property test.
+std::string replay_command(std::uint64_t seed) {
+  std::error_code error;
+  const fs::path program = fs::read_symlink("/proc/self/exe", error);
+  return fmt::format("SWELL_PROPERTY_SEED={} SWELL_PROPERTY_CASES=1 {} "
+                     "--gtest_filter=CliProperty.SynthThenGateOnDrawnCases",
+                     seed, error ? "swell_property_tests" : program.string());
+}
+
 void run_case(std::uint64_t seed, const fs::path& root, Tally& tally) {
   const DrawnCase c = draw_case(seed);
   const fs::path dir = root / fmt::format("case_{}", seed);
   fs::remove_all(dir);
   const std::string synth = c.arguments + " --out " + dir.string();
-  const std::string reproduce = fmt::format("seed {}: swell synth {}", seed, synth);
+  const std::string reproduce = fmt::format("seed {}: swell synth {}\n  replay: {}", seed, synth,
+                                            replay_command(seed));
   ++tally.cases;
   const auto made = test::swell(fmt::format("synth {}", synth), kCommandSeconds);
   if (has_sanitizer_report(made.output)) {
@@ -347,8 +361,21 @@ TEST(CliProperty, SynthThenGateOnDrawnCases) {
                int(environment_number("SWELL_PROPERTY_CASES", 40)));
 }
 
+// A first seed no earlier run is likely to have drawn: 400 cases from a random 48-bit number.
+std::uint64_t fresh_seed() {
+  std::random_device device;
+  const std::uint64_t bits = (std::uint64_t(device()) << 32) ^ device() ^
+                             std::uint64_t(std::chrono::steady_clock::now().time_since_epoch().count());
+  return 1 + bits % (std::uint64_t(1) << 48);
+}
+
 TEST(CliPropertyLong, SynthThenGateOnFourHundredDrawnCases) {
-  run_property(environment_number("SWELL_PROPERTY_LONG_SEED", 1000000), 400);
+  const std::uint64_t seed = environment_number("SWELL_PROPERTY_LONG_SEED", 0);
+  const std::uint64_t first = seed ? seed : fresh_seed();
+  std::cout << fmt::format("soak property test: first seed {} ({}; replay the whole run with "
+                           "SWELL_PROPERTY_LONG_SEED={})\n",
+                           first, seed ? "from SWELL_PROPERTY_LONG_SEED" : "fresh", first);
+  run_property(first, 400);
 }
 
 }  // namespace

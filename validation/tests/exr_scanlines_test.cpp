@@ -3,13 +3,17 @@
 // ZIP; float and half channels; sizes whose last block is partial; a data window off the
 // origin; channels asked in any order), and false — never a crash or a partial answer taken as
 // whole — for every file it leaves to OpenImageIO (other compressions, tiles, uint channels,
-// missing channels, wrong size) and every broken one (truncated, corrupt zlib data).
+// missing channels, wrong size) and every broken one (truncated, corrupt zlib data). The header
+// OpenEXRCore reads against OpenImageIO's, and swell's EXR writer (exr_scanlines_write.cpp) as
+// OpenImageIO reads its files.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -19,12 +23,17 @@
 #include <vector>
 
 #include "../src/exr_scanlines.hpp"
+#include "swell/reference/errors.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using swell::validation::detail::ExrScratch;
+using swell::validation::detail::apply_zip_filters;
+using swell::validation::detail::read_exr_header;
+using swell::validation::detail::SampleType;
 using swell::validation::detail::undo_zip_filters;
+using swell::validation::detail::write_exr_scanlines;
 
 // The reader's lines, interleaved as OpenImageIO's read_image lays them out (pixel p's value of
 // channels[k] at pixels[p × channels.size() + k]); a line delivered twice or out of order fails.
@@ -241,6 +250,131 @@ TEST(ExrZipFilters, MatchOpenEXRsByteLoops) {
     if (size > 0) undo_zip_filters(bytes.data(), size, out.data());
     EXPECT_EQ(out, expected) << size << " bytes";
   }
+}
+
+// apply_zip_filters is undo_zip_filters' inverse (which the test above ties to OpenEXR's own
+// loops), on every size from 0 to 200 bytes and a few large odd ones.
+TEST(ExrZipFilters, ApplyThenUndoIsTheIdentity) {
+  std::mt19937 random(8);
+  std::vector<std::size_t> sizes;
+  for (std::size_t size = 0; size <= 200; ++size) sizes.push_back(size);
+  sizes.insert(sizes.end(), {4095, 4096, 4097, 98317});
+  for (std::size_t size : sizes) {
+    std::vector<std::uint8_t> block(size), filtered(size), back(size, 0xA5);
+    for (auto& b : block) b = std::uint8_t(random());
+    apply_zip_filters(block.data(), size, filtered.data());
+    if (size > 0) undo_zip_filters(filtered.data(), size, back.data());
+    EXPECT_EQ(back, block) << size << " bytes";
+  }
+}
+
+// The header OpenEXRCore reads, as OpenImageIO describes the same file: size, channels (as a
+// set: OpenImageIO puts R, G, B, A first), their types; none for a file it cannot open.
+TEST_F(ExrScanlines, HeaderAsOpenImageIODescribesIt) {
+  std::vector<ExrFile> files(5);
+  files[1].type = OIIO::TypeDesc::HALF;
+  files[2].type = OIIO::TypeDesc::UINT32;
+  files[3].tile = 16;
+  files[3].compression = "piz";
+  files[4].x = 5;
+  files[4].y = -3;
+  files[4].channels = {"R", "G", "B", "A", "h"};
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    SCOPED_TRACE(k);
+    const std::string path = write(files[k], "header_" + std::to_string(k) + ".exr");
+    const auto header = read_exr_header(path);
+    ASSERT_TRUE(header);
+    auto in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in) << OIIO::geterror();
+    const OIIO::ImageSpec& spec = in->spec();
+    EXPECT_EQ(header->width, spec.width);
+    EXPECT_EQ(header->height, spec.height);
+    EXPECT_FALSE(header->deep);
+    ASSERT_EQ(int(header->channel_names.size()), spec.nchannels);
+    for (int c = 0; c < spec.nchannels; ++c) {
+      const auto at = std::find(header->channel_names.begin(), header->channel_names.end(),
+                                spec.channelnames[std::size_t(c)]);
+      ASSERT_NE(at, header->channel_names.end()) << spec.channelnames[std::size_t(c)];
+      const std::size_t slot = std::size_t(at - header->channel_names.begin());
+      EXPECT_EQ(header->channel_type_names[slot], spec.channelformat(c).c_str());
+      const SampleType type = spec.channelformat(c) == OIIO::TypeDesc::HALF    ? SampleType::half
+                              : spec.channelformat(c) == OIIO::TypeDesc::FLOAT ? SampleType::float32
+                                                                              : SampleType::other;
+      EXPECT_EQ(header->channel_types[slot], type);
+    }
+  }
+  EXPECT_FALSE(read_exr_header((directory_ / "absent.exr").string()));
+  std::ofstream(directory_ / "junk.exr", std::ios::binary) << "not an EXR file at all";
+  EXPECT_FALSE(read_exr_header((directory_ / "junk.exr").string()));
+}
+
+// swell's writer as OpenImageIO reads its files: every float bit for bit (NaN, ±∞, subnormals
+// and ±0 among them), on sizes whose last ZIP block is partial, with blocks that compress and
+// blocks stored raw; ZIP compression, float channels under the names given; and swell's own
+// reader takes the same file.
+TEST_F(ExrScanlines, WriterIsReadBackByOpenImageIOBitForBit) {
+  const std::vector<std::string> channels = {"h", "sx", "sy", "dx", "dy", "J"};
+  const float specials[] = {0.0f, -0.0f, 1e-40f, -3e-39f, 6.5e4f, -1e30f,
+                            std::numeric_limits<float>::infinity(),
+                            -std::numeric_limits<float>::infinity(),
+                            std::numeric_limits<float>::quiet_NaN()};
+  for (const auto& [width, height] : std::vector<std::pair<int, int>>{{1, 1}, {37, 19}, {64, 16}, {256, 33}}) {
+    for (const bool smooth : {false, true}) {
+      const std::string name = "written_" + std::to_string(width) + "x" + std::to_string(height) +
+                               (smooth ? "_smooth" : "_rough") + ".exr";
+      SCOPED_TRACE(name);
+      std::mt19937_64 random(std::hash<std::string>{}(name));
+      std::normal_distribution<float> normal(0.0f, 3.0f);
+      const std::size_t count = std::size_t(width) * std::size_t(height);
+      std::vector<float> expected(count * channels.size());  // interleaved, as OpenImageIO reads
+      for (std::size_t i = 0; i < expected.size(); ++i) {
+        // Smooth: eighths of a slow sine, which ZIP shrinks; rough: normal noise, stored raw.
+        expected[i] = smooth ? float(std::round(8 * std::sin(1e-3 * double(i))) / 8)
+                             : i % 89 == 3 ? specials[(i / 89) % 9] : normal(random);
+      }
+      const std::string path = (directory_ / name).string();
+      write_exr_scanlines(path, width, height, channels,
+                          [&](std::size_t slot, std::size_t row, float* values) {
+                            for (int x = 0; x < width; ++x) {
+                              values[x] = expected[(row * std::size_t(width) + std::size_t(x)) *
+                                                       channels.size() + slot];
+                            }
+                          });
+      auto in = OIIO::ImageInput::open(path);
+      ASSERT_TRUE(in) << OIIO::geterror();
+      EXPECT_EQ(in->spec().width, width);
+      EXPECT_EQ(in->spec().height, height);
+      EXPECT_EQ(in->spec().get_string_attribute("compression"), "zip");
+      for (int c = 0; c < in->spec().nchannels; ++c) {
+        EXPECT_EQ(in->spec().channelformat(c), OIIO::TypeDesc::FLOAT);
+      }
+      const auto through_openimageio = read_through_openimageio(path, channels);
+      ASSERT_EQ(through_openimageio.size(), expected.size());
+      EXPECT_EQ(std::memcmp(through_openimageio.data(), expected.data(), expected.size() * 4), 0);
+      std::vector<float> direct(expected.size());
+      ASSERT_TRUE(read_exr_scanlines(path, channels, width, height, direct.data(), scratch_));
+      EXPECT_EQ(std::memcmp(direct.data(), expected.data(), expected.size() * 4), 0);
+      if (smooth && width == 256) {
+        EXPECT_LT(fs::file_size(path), expected.size() * 4 / 2) << "smooth values should compress";
+      }
+    }
+  }
+}
+
+TEST_F(ExrScanlines, WriterNamesTheFileItCannotWrite) {
+  const std::string path = (directory_ / "no_such_directory" / "frame.exr").string();
+  try {
+    write_exr_scanlines(path, 4, 4, {"h"}, [](std::size_t, std::size_t, float* values) {
+      for (int x = 0; x < 4; ++x) values[x] = 1.0f;
+    });
+    ADD_FAILURE() << "no exception";
+  } catch (const swell::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_THROW(write_exr_scanlines((directory_ / "empty.exr").string(), 0, 4, {"h"},
+                                   [](std::size_t, std::size_t, float*) {}),
+               swell::InvalidInput);
 }
 
 }  // namespace

@@ -1,143 +1,21 @@
 // Frames on disk: EXR, TIFF, .npy and .raw round trips of a FrameSequence, bit for bit for
 // float32 data (and float64/complex for .npy), with the orientation and names the docs promise;
 // and every broken input — truncated or corrupt file, missing channel, wrong size, NaN, missing
-// or surplus frame — rejected with InvalidInput naming the file and the problem.
+// or surplus frame — rejected with InvalidInput naming the file and the problem. Files written
+// by OpenImageIO itself, and swell's files read by it: frame_io_openimageio_test.cpp.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <OpenImageIO/imageio.h>
-
-#include <bit>
-#include <cmath>
 #include <complex>
-#include <cstdint>
-#include <filesystem>
 #include <fstream>
 #include <limits>
-#include <random>
-#include <string>
-#include <vector>
 
-#include "swell/reference/errors.hpp"
-#include "swell/validation/frame_io.hpp"
+#include "frame_io_test_support.hpp"
 #include "swell/validation/npy.hpp"
 
 namespace {
 
-namespace fs = std::filesystem;
-using swell::InvalidInput;
-using swell::reference::Field;
-using swell::reference::FieldFrame;
-using swell::reference::FrameSequence;
-using swell::reference::Grid;
-using swell::validation::CaseFile;
-using swell::validation::FrameFormat;
-using swell::validation::FrameWriteOptions;
-using swell::validation::InputSpec;
+using namespace swell::test;
 using swell::validation::NpyArray;
-using swell::validation::frame_file_name;
-using swell::validation::read_frames;
-using swell::validation::write_frames;
-
-// A non-square grid, so that a transposed reader or writer cannot pass.
-constexpr int kNx = 7, kNy = 5;
-constexpr int kFrames = 3;
-constexpr double kT0 = 1.5, kDt = 0.25;
-
-bool contains(const std::string& text, const std::string& fragment) {
-  return text.find(fragment) != std::string::npos;
-}
-
-// Values exactly representable in float32 (when `float32`), of mixed signs and magnitudes,
-// different in every field and frame.
-FrameSequence make_sequence(const std::vector<Field>& fields, bool float32, unsigned seed) {
-  std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  FrameSequence s;
-  s.grid = {kNx, kNy, 70.0, 50.0};
-  for (int f = 0; f < kFrames; ++f) {
-    FieldFrame frame;
-    frame.time = kT0 + f * kDt;
-    for (Field field : fields) {
-      std::vector<double> values(kNx * kNy);
-      for (auto& v : values) {
-        const double x = u(random) * std::pow(10.0, std::floor(6 * u(random)));
-        v = float32 ? static_cast<double>(static_cast<float>(x)) : x;
-      }
-      frame.fields[field] = values;
-    }
-    s.frames.push_back(frame);
-  }
-  return s;
-}
-
-// The case that reads `frames` from `directory`.
-CaseFile case_for(const fs::path& directory, const InputSpec& input, int frames = kFrames) {
-  CaseFile c;
-  c.ocean.grid = {kNx, kNy, 70.0, 50.0};
-  c.ocean.t0 = kT0;
-  c.ocean.dt = kDt;
-  c.ocean.frames = frames;
-  c.ocean.spectrum = {"jonswap", {{"hs", 2.0}, {"tp", 7.0}}, {}};
-  c.ocean.spreading = {"cos2s", {{"s", 10.0}}, {}};
-  c.input = input;
-  c.directory = directory;
-  return c;
-}
-
-void expect_bit_exact(const FrameSequence& want, const FrameSequence& got) {
-  ASSERT_EQ(got.frames.size(), want.frames.size());
-  EXPECT_EQ(got.grid.nx, want.grid.nx);
-  EXPECT_EQ(got.grid.ny, want.grid.ny);
-  for (std::size_t f = 0; f < want.frames.size(); ++f) {
-    EXPECT_EQ(got.frames[f].time, want.frames[f].time) << "frame " << f;
-    ASSERT_EQ(got.frames[f].fields.size(), want.frames[f].fields.size()) << "frame " << f;
-    for (const auto& [field, values] : want.frames[f].fields) {
-      ASSERT_TRUE(got.frames[f].fields.count(field)) << swell::reference::field_name(field);
-      const auto& back = got.frames[f].fields.at(field);
-      ASSERT_EQ(back.size(), values.size());
-      for (std::size_t k = 0; k < values.size(); ++k) {
-        ASSERT_EQ(std::bit_cast<std::uint64_t>(back[k]), std::bit_cast<std::uint64_t>(values[k]))
-            << swell::reference::field_name(field) << " frame " << f << " sample (" << k % kNx
-            << ", " << k / kNx << "): " << back[k] << " vs " << values[k];
-      }
-    }
-  }
-}
-
-// Expects InvalidInput whose message contains every fragment; returns the message.
-template <typename F>
-std::string expect_invalid(F&& action, const std::vector<std::string>& fragments) {
-  try {
-    action();
-    ADD_FAILURE() << "no exception";
-  } catch (const InvalidInput& e) {
-    const std::string message = e.what();
-    for (const auto& fragment : fragments) {
-      EXPECT_TRUE(contains(message, fragment)) << "'" << fragment << "' not in: " << message;
-    }
-    return message;
-  }
-  return "";
-}
-
-class FrameIo : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("swell_frame_io_test_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string file(const std::string& name) const { return (dir_ / name).string(); }
-
-  fs::path dir_;
-};
-
-const std::vector<Field> kSome = {Field::height, Field::slope_x, Field::disp_x, Field::jacobian};
-const std::vector<Field> kAll(swell::reference::kAllFields.begin(), swell::reference::kAllFields.end());
 
 // ------------------------------------------------------------------ names
 
@@ -169,29 +47,6 @@ TEST_F(FrameIo, ExrRoundTripIsBitExactForFloat32) {
   EXPECT_EQ(back.unit_roundoff, 0x1p-24);
 }
 
-TEST_F(FrameIo, ExrHoldsNamedFloatChannelsWithRowJAsScanlineJ) {
-  const auto frames = make_sequence(kSome, true, 2);
-  write_frames(dir_, frames, {FrameFormat::exr, false});
-  auto in = OIIO::ImageInput::open(file("frame_0001.exr"));
-  ASSERT_TRUE(in) << OIIO::geterror();
-  const auto& spec = in->spec();
-  EXPECT_EQ(spec.width, kNx);
-  EXPECT_EQ(spec.height, kNy);
-  std::vector<std::string> names(spec.channelnames.begin(), spec.channelnames.end());
-  std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"J", "dx", "h", "sx"}));
-  const int h = spec.channelindex("h");
-  ASSERT_GE(h, 0);
-  EXPECT_EQ(spec.channelformat(h), OIIO::TypeDesc::FLOAT);
-  std::vector<float> pixels(kNx * kNy);
-  ASSERT_TRUE(in->read_image(0, 0, h, h + 1, OIIO::TypeDesc::FLOAT, pixels.data()));
-  const auto& want = frames.frames[1].fields.at(Field::height);
-  for (int j = 0; j < kNy; ++j) {
-    for (int i = 0; i < kNx; ++i) {
-      ASSERT_EQ(pixels[j * kNx + i], static_cast<float>(want[j * kNx + i])) << i << ", " << j;
-    }
-  }
-}
 
 TEST_F(FrameIo, TiffRoundTripIsBitExactAndKeepsChannelNames) {
   const auto frames = make_sequence(kSome, true, 3);
@@ -210,42 +65,6 @@ TEST_F(FrameIo, TiffRoundTripIsBitExactAndKeepsChannelNames) {
   EXPECT_EQ(part.frames[2].fields.at(Field::slope_x), frames.frames[2].fields.at(Field::slope_x));
 }
 
-// A TIFF from another writer has no channel names: fields go by position in swell's order
-// (h, sx, sy, dx, dy, J among those listed), or by OpenImageIO's generic names (R, G, B, …).
-TEST_F(FrameIo, ForeignTiffChannelsByPositionOrByGenericName) {
-  std::vector<std::vector<float>> planes(2, std::vector<float>(kNx * kNy));
-  for (int k = 0; k < kNx * kNy; ++k) {
-    planes[0][k] = 0.5f * k;
-    planes[1][k] = -0.25f * k - 1;
-  }
-  auto out = OIIO::ImageOutput::create(file("foreign_0.tif"));
-  OIIO::ImageSpec spec(kNx, kNy, 2, OIIO::TypeDesc::FLOAT);
-  spec.alpha_channel = -1;
-  ASSERT_TRUE(out->open(file("foreign_0.tif"), spec));
-  std::vector<float> interleaved;
-  for (int k = 0; k < kNx * kNy; ++k) {
-    interleaved.push_back(planes[0][k]);
-    interleaved.push_back(planes[1][k]);
-  }
-  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, interleaved.data()));
-  out->close();
-
-  InputSpec input;
-  input.files = "foreign_%d.tif";
-  input.channels = {{Field::disp_y, "my_dy"}, {Field::height, "my_h"}};  // names the file lacks
-  auto back = read_frames(case_for(dir_, input, 1));
-  EXPECT_EQ(back.frames[0].fields.at(Field::height), std::vector<double>(planes[0].begin(), planes[0].end()));
-  EXPECT_EQ(back.frames[0].fields.at(Field::disp_y), std::vector<double>(planes[1].begin(), planes[1].end()));
-
-  input.channels = {{Field::height, "G"}};  // OpenImageIO's name of the second channel
-  back = read_frames(case_for(dir_, input, 1));
-  EXPECT_EQ(back.frames[0].fields.at(Field::height), std::vector<double>(planes[1].begin(), planes[1].end()));
-
-  // Three fields for two channels: no positional guess.
-  input.channels = {{Field::height, "a"}, {Field::disp_x, "b"}, {Field::disp_y, "c"}};
-  expect_invalid([&] { (void)read_frames(case_for(dir_, input, 1)); },
-                 {"foreign_0.tif", "missing channel 'a'", "R, G"});
-}
 
 TEST_F(FrameIo, NpyRoundTripFloat32AndFloat64) {
   const auto frames32 = make_sequence(kSome, true, 4);
@@ -325,22 +144,6 @@ TEST_F(FrameIo, RawRoundTripFloat32AndFloat64) {
   }
 }
 
-TEST_F(FrameIo, HalfExrChannelsSetTheUnitRoundoff) {
-  auto out = OIIO::ImageOutput::create(file("half_0000.exr"));
-  OIIO::ImageSpec spec(kNx, kNy, 1, OIIO::TypeDesc::HALF);
-  spec.channelnames = {"h"};
-  ASSERT_TRUE(out->open(file("half_0000.exr"), spec));
-  std::vector<float> values(kNx * kNy);
-  for (int k = 0; k < kNx * kNy; ++k) values[k] = 0.125f * k - 2;  // exact in half
-  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, values.data()));
-  out->close();
-  InputSpec input;
-  input.files = "half_%04d.exr";
-  input.channels = {{Field::height, "h"}};
-  const auto back = read_frames(case_for(dir_, input, 1));
-  EXPECT_EQ(back.unit_roundoff, 0x1p-11);
-  EXPECT_EQ(back.frames[0].fields.at(Field::height), std::vector<double>(values.begin(), values.end()));
-}
 
 TEST_F(FrameIo, PatternOverrideIsRelativeToTheCurrentDirectory) {
   const auto frames = make_sequence({Field::height}, true, 8);
@@ -367,20 +170,6 @@ TEST_F(FrameIo, WriterRejectsInconsistentFrames) {
 
 // ------------------------------------------------------------------ broken input
 
-class BrokenFrames : public FrameIo {
- protected:
-  void write(FrameFormat format, const std::vector<Field>& fields = kSome) {
-    frames_ = make_sequence(fields, true, 10);
-    spec_ = write_frames(dir_, frames_, {format, false});
-  }
-  CaseFile the_case(int frames = kFrames) const { return case_for(dir_, spec_, frames); }
-  std::string read_error(const std::vector<std::string>& fragments, int frames = kFrames) {
-    return expect_invalid([&] { (void)read_frames(the_case(frames)); }, fragments);
-  }
-
-  FrameSequence frames_;
-  InputSpec spec_;
-};
 
 TEST_F(BrokenFrames, TruncatedExr) {
   write(FrameFormat::exr);
@@ -526,121 +315,11 @@ TEST_F(BrokenFrames, FramePatternProblems) {
   read_error({"names no field"});
 }
 
-// Integer pixels carry no unit: without [input] value_range they are refused; with it they
-// read as low + (high − low)·p/65535. A float channel refuses a value range, and integer types
-// other than 8- and 16-bit unsigned are refused.
-TEST_F(BrokenFrames, IntegerImagesNeedAValueRangeAndFloatChannelsRefuseOne) {
-  auto write_integer_tiff = [&](const std::string& name, OIIO::TypeDesc type) {
-    auto out = OIIO::ImageOutput::create(file(name));
-    OIIO::ImageSpec spec(kNx, kNy, 1, type);
-    ASSERT_TRUE(out->open(file(name), spec));
-    std::vector<std::uint16_t> values(kNx * kNy, 7);
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, values.data()));
-    out->close();
-  };
-  write_integer_tiff("int_0.tif", OIIO::TypeDesc::UINT16);
-  spec_.files = "int_%d.tif";
-  spec_.channels = {{Field::height, "Y"}};
-  read_error({"int_0.tif", "channel 'Y' for height", "16-bit integers", "value_range"}, 1);
-
-  spec_.value_ranges[Field::height] = {-1.0, 2.0};
-  const auto back = read_frames(the_case(1));
-  // p/65535 passes through float (OpenImageIO's normalized pixel): 2⁻²⁴ relative, far below
-  // the quantization step 3/65535.
-  for (double v : back.frames[0].fields.at(Field::height)) ASSERT_NEAR(v, -1.0 + 3.0 * 7 / 65535, 1e-6);
-
-  write_integer_tiff("wide_0.tif", OIIO::TypeDesc::INT32);
-  spec_.files = "wide_%d.tif";
-  read_error({"wide_0.tif", "stores int values", "8- or 16-bit unsigned"}, 1);
-
-  write(FrameFormat::exr);
-  spec_.value_ranges[Field::disp_x] = {-1.0, 1.0};
-  read_error({"frame_0000.exr", "channel 'dx' for disp_x", "need no [input] value_range"});
-  spec_.value_ranges.clear();
-  spec_.value_ranges[Field::slope_y] = {-1.0, 1.0};  // a field the input does not provide
-  read_error({"value_range", "slope_y", "does not provide"});
-}
 
 // ------------------------------------------------------------------ integer images
 
-// Values of a few metres, as an engine's heights and displacements are.
-FrameSequence make_metres(const std::vector<Field>& fields, unsigned seed) {
-  std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> u(-3, 3);
-  FrameSequence s = make_sequence(fields, false, seed);
-  for (auto& frame : s.frames) {
-    for (auto& [field, values] : frame.fields) {
-      for (auto& v : values) v = u(random);
-    }
-  }
-  return s;
-}
 
-// PNG frames hold 16-bit pixels standing for values through the value range: every value
-// comes back within half a quantization step q = (high − low)/65535 (and float rounding) of the
-// value written, on
-// the channels R, G, B in swell's field order; the unit roundoff is the quantization's,
-// q/√(12 mean v²) (largest over fields and frames).
-TEST_F(FrameIo, PngRoundTripIsWithinHalfAQuantizationStep) {
-  const auto frames = make_metres({Field::disp_y, Field::height, Field::disp_x}, 21);
-  FrameWriteOptions write;
-  write.format = FrameFormat::png;
-  write.png_range = {-4.0, 4.0};
-  const InputSpec spec = write_frames(dir_, frames, write);
-  EXPECT_EQ(spec.files, "frame_%04d.png");
-  EXPECT_EQ(spec.channels.at(Field::height), "R");
-  EXPECT_EQ(spec.channels.at(Field::disp_x), "G");
-  EXPECT_EQ(spec.channels.at(Field::disp_y), "B");
-  ASSERT_EQ(spec.value_ranges.size(), 3u);
-  for (const auto& [field, range] : spec.value_ranges) {
-    EXPECT_EQ(range, (swell::validation::IntegerRange{-4.0, 4.0}));
-  }
-  auto in = OIIO::ImageInput::open(file("frame_0001.png"));
-  ASSERT_TRUE(in) << OIIO::geterror();
-  EXPECT_EQ(in->spec().format, OIIO::TypeDesc::UINT16);
-  EXPECT_EQ(in->spec().nchannels, 3);
-  in->close();
 
-  const auto back = read_frames(case_for(dir_, spec));
-  const double step = 8.0 / 65535;
-  double largest_error = 0, roundoff = 0;
-  for (int f = 0; f < kFrames; ++f) {
-    for (const auto& [field, want] : frames.frames[f].fields) {
-      const auto& got = back.frames[f].fields.at(field);
-      double sum = 0;
-      for (std::size_t k = 0; k < want.size(); ++k) {
-        largest_error = std::max(largest_error, std::abs(got[k] - want[k]));
-        sum += got[k] * got[k];
-      }
-      roundoff = std::max(roundoff, step / std::sqrt(12 * sum / double(got.size())));
-    }
-  }
-  // Half a step, plus the pixel's pass through float as p/65535 (2⁻²⁴ relative) times the width.
-  EXPECT_LE(largest_error, step / 2 + 8.0 * 0x1p-24);
-  EXPECT_GT(largest_error, step / 100);  // quantized, not stored exactly
-  EXPECT_NEAR(back.unit_roundoff, roundoff, 1e-12 * roundoff);
-}
-
-// An 8-bit grey PNG from another writer: one channel, Y, pixel p ↦ low + (high − low)·p/255,
-// its channel found by name or, alone, by position.
-TEST_F(FrameIo, EightBitGreyPngThroughTheValueRange) {
-  std::vector<std::uint8_t> pixels(kNx * kNy);
-  for (int k = 0; k < kNx * kNy; ++k) pixels[k] = static_cast<std::uint8_t>(37 * k % 256);
-  auto out = OIIO::ImageOutput::create(file("grey_0.png"));
-  ASSERT_TRUE(out->open(file("grey_0.png"), OIIO::ImageSpec(kNx, kNy, 1, OIIO::TypeDesc::UINT8)));
-  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
-  out->close();
-  for (const std::string channel : {"Y", "eta"}) {
-    SCOPED_TRACE(channel);
-    InputSpec input;
-    input.files = "grey_%d.png";
-    input.channels = {{Field::height, channel}};
-    input.value_ranges = {{Field::height, {-2.0, 3.0}}};
-    const auto back = read_frames(case_for(dir_, input, 1));
-    const auto& h = back.frames[0].fields.at(Field::height);
-    for (int k = 0; k < kNx * kNy; ++k) ASSERT_NEAR(h[k], -2.0 + 5.0 * pixels[k] / 255, 1e-6) << k;
-  }
-}
 
 TEST_F(FrameIo, PngWritingRefusesWhatItCannotStore) {
   const auto frames = make_metres({Field::height, Field::disp_x}, 22);

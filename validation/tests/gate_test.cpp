@@ -623,6 +623,25 @@ TEST_F(GateCli, ABuggyEngineFailsWithExitOneAndTheJunitNamesTheCheck) {
   }
 }
 
+// EXR frames are written and judged through OpenEXRCore alone: with swell's OpenImageIO module
+// made unloadable, `swell synth` writes EXR and `swell gate` passes it, while a TIFF needs the
+// module and is refused (exit 2) naming it and the variable that points to it.
+TEST_F(GateCli, ExrFramesNeedNoOpenImageIO) {
+  ASSERT_EQ(setenv("SWELL_OPENIMAGEIO_MODULE", "/nonexistent/libswell_openimageio.so", 1), 0);
+  const std::string synth = "synth --model jonswap --hs 2 --tp 7 --impl fftw --n 32 --length 300 "
+                            "--frames 4 --dt 0.5 --out ";
+  const CliRun exr = swell(synth + path("exr"));
+  const CliRun gate = swell("gate --case " + path("exr/case.toml"));
+  const CliRun tiff = swell(synth + path("tiff") + " --format tiff");
+  unsetenv("SWELL_OPENIMAGEIO_MODULE");
+  ASSERT_EQ(exr.exit_code, 0) << exr.output;
+  EXPECT_EQ(gate.exit_code, 0) << gate.output;
+  EXPECT_TRUE(contains(gate.output, "verdict: PASS")) << gate.output;
+  EXPECT_EQ(tiff.exit_code, 2) << tiff.output;
+  EXPECT_TRUE(contains(tiff.output, "needs OpenImageIO")) << tiff.output;
+  EXPECT_TRUE(contains(tiff.output, "/nonexistent/libswell_openimageio.so")) << tiff.output;
+}
+
 // The gate's analysis transforms are FFTW estimate plans, and FFTW gives an estimate plan any
 // wisdom the process holds: the user's cache of MEASURE-class wisdom (left by swell bench or
 // swell fft) once changed the report's last digits; impls/src/fftw.cpp now loads the cache only

@@ -1,5 +1,6 @@
 #pragma once
-// Frames on disk, through OpenImageIO (EXR, TIFF) and .npy (npy.hpp):
+// Frames on disk: EXR (through OpenEXRCore), TIFF and PNG (through OpenImageIO, loaded only
+// for them), .npy (npy.hpp) and raw:
 //
 //   exr:  DIR/frame_0000.exr, … one file per frame, float32 channels h, sx, sy, dx, dy, J
 //         (reference::channel_name), rows = y (row 0 is j = 0), columns = x.
@@ -80,9 +81,12 @@ std::string frame_file_name(const std::string& pattern, int index, const std::st
 // `keep`, when given, says which fields of which frame to keep: the others are still read and
 // checked (sizes, finite values) but not stored, so that a caller that needs only some fields
 // of some frames (the gate: heights throughout, every field at the ends) saves the memory.
+//
+// `threads` (0: every hardware thread) read frames in parallel, and decode within a file what
+// threads the frames leave over.
 using FieldFilter = std::function<bool(int frame, reference::Field field)>;
 reference::FrameSequence read_frames(const CaseFile& case_file,
                                      const std::string& pattern_override = "",
-                                     const FieldFilter& keep = {});
+                                     const FieldFilter& keep = {}, int threads = 0);
 
 }  // namespace swell::validation

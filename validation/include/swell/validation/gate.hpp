@@ -22,8 +22,7 @@ struct GateOptions {
   double alpha = 1e-3;        // family-wise false-alarm rate of the whole gate
   std::string input_pattern;  // replaces the case's [input] files when not empty
   // Threads that read frames and run the checks (0: every hardware thread); the verdict does
-  // not depend on it. run_gate(path) sets OpenImageIO's global "threads" and "exr_threads"
-  // attributes to it.
+  // not depend on it.
   int threads = 0;
   // Called with a one-line message ("reading 64 frames of 512×512…") as the gate goes; unset:
   // silent. The CLI prints them on standard error.
