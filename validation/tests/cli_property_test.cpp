@@ -369,7 +369,7 @@ std::uint64_t fresh_seed() {
   return 1 + bits % (std::uint64_t(1) << 48);
 }
 
-TEST(CliPropertyLong, SynthThenGateOnFourHundredDrawnCases) {
+TEST(CliPropertySoak, SynthThenGateOnFourHundredDrawnCases) {
   const std::uint64_t seed = environment_number("SWELL_PROPERTY_LONG_SEED", 0);
   const std::uint64_t first = seed ? seed : fresh_seed();
   std::cout << fmt::format("soak property test: first seed {} ({}; replay the whole run with "

@@ -45,11 +45,16 @@ std::string why_unavailable(const std::string& name) {
   }
 }
 
-std::vector<std::string> available_backends() {
-  std::vector<std::string> names;
-  for (const auto& name : backend_names()) {
-    if (why_unavailable(name).empty()) names.push_back(name);
-  }
+// Asked once per process: the three instantiations below share it (starting vulkan loads the
+// Vulkan loader's drivers, ~0.1 s each time).
+const std::vector<std::string>& available_backends() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const auto& name : backend_names()) {
+      if (why_unavailable(name).empty()) out.push_back(name);
+    }
+    return out;
+  }();
   return names;
 }
 

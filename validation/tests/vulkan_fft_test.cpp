@@ -64,10 +64,38 @@ TEST(Vulkan, Fp32At2048SquaredWithinFiveTimesTenToTheMinusSeven) {
   EXPECT_LE(r.rel_linf, r.bound) << r.oracle;
 }
 
+// Every length whose kernel differs (docs/vulkan.md §Kernels), on either axis, through both
+// line kernels — the subgroup kernel where the device has it (16 … 2048 points, 4096 as two
+// 64-point passes; shorter lines take the portable one) and the portable Stockham kernel
+// (subgroups=off): the portable kernel's first stages of radix 2, 4, 8 and 16 alone, radix 4, 8
+// and 16 followed by a radix-8 stage, one and two radix-16 stages after it (4096 = 16·16·16
+// fills lavapipe's shared memory: one copy, two barriers a stage); the subgroup kernel's lane
+// counts L = 1, 2, 4, 8 (16 … 128 points) and exchange groups G = 2, 4, 16 (256, 512, 2048).
+// Kind (c2c forward, c2r) and precision alternate over the lengths, so that each kernel meets
+// each of them on short and long lines alike. The soak tier runs every length in every
+// combination (VulkanSoak below).
+TEST(Vulkan, EveryKernelPathOnEitherAxis) {
+  VULKAN_OR_SKIP(backend);
+  const auto portable = make_backend("vulkan:subgroups=off");
+  const int lengths[] = {1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 2048, 4096};
+  for (const Backend* b : {backend.get(), portable.get()}) {
+    const auto& precisions = b->capabilities().precisions;
+    for (std::size_t i = 0; i < std::size(lengths); ++i) {
+      const int n = lengths[i];
+      const Precision precision = precisions[i % precisions.size()];
+      const auto [kind, direction] = (i / 2) % 2 ? std::pair{Kind::c2r, Direction::inverse}
+                                                 : std::pair{Kind::c2c, Direction::forward};
+      for (auto [nx, ny] : {std::pair{n, 16}, std::pair{16, n}}) {
+        expect_within_bound(*b, nx, ny, kind, direction, precision, 13);
+      }
+    }
+  }
+}
+
 // Every length 1 … 4096 on either axis, both precisions, c2c and c2r (r2c shares c2c's passes
 // with other flags; the accuracy suite has it): each length selects its own first radix (2, 4,
 // 8, 16) and number of radix-16 stages.
-TEST(Vulkan, EveryPowerOfTwoLengthOnEitherAxis) {
+TEST(VulkanSoak, EveryPowerOfTwoLengthOnEitherAxis) {
   VULKAN_OR_SKIP(backend);
   for (Precision precision : backend->capabilities().precisions) {
     for (int n = 1; n <= 4096; n *= 2) {
@@ -84,7 +112,7 @@ TEST(Vulkan, EveryPowerOfTwoLengthOnEitherAxis) {
 // points, 4096 as two 64-point passes; 16 lines give every length a workgroup of 16 threads
 // or more, whole subgroups on lavapipe) and, with subgroups=off, the portable Stockham kernel
 // (4096 in one pass) — the one devices without subgroup shuffles run.
-TEST(Vulkan, BothLineKernelsOnEveryLengthOnEitherAxis) {
+TEST(VulkanSoak, BothLineKernelsOnEveryLengthOnEitherAxis) {
   VULKAN_OR_SKIP(backend);
   const auto portable = make_backend("vulkan:subgroups=off");
   // The portable kernel's fp64 is its fp32 code on doubles (and runs beside the shuffle kernel
