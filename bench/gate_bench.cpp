@@ -13,7 +13,7 @@
 // Setup, not timed: the frames of a JONSWAP case (Hs 3 m, Tp 8 s, γ 3.3, cos2s s = 10, 1000 m
 // patch, dt 0.1 s) are synthesized once in fp32 through FFTW and written as EXR with their
 // case.toml into a temporary directory, removed at exit. The targets: gate/512/64 under 2 s
-// (issue 5), then under 1.0 s (issue 17, with the same reports: GateGolden in swell_gate_tests),
+// (issue 5), then under 1.0 s (issue 17, with the same reports: GateGolden in swell_gate_catalogue_tests),
 // with 2 threads on the 2-core reference machine.
 //
 // Counters per run: read_s (case and frames) and judge_s (the checks), wall clock; cpu_s, the

@@ -27,7 +27,7 @@
 // A deliberate change to a check's statistics or wording changes these reports: regenerate them
 // with the change, say so in the commit, and review the diff of the goldens:
 //
-//   SWELL_REGENERATE_GOLDENS=1 build/validation/tests/swell_gate_tests --gtest_filter='*GateGolden*'
+//   SWELL_REGENERATE_GOLDENS=1 build/validation/tests/swell_gate_catalogue_tests --gtest_filter='*GateGolden*'
 #include <gtest/gtest.h>
 #include <unistd.h>
 
