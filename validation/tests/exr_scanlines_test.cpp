@@ -318,7 +318,8 @@ TEST_F(ExrScanlines, WriterIsReadBackByOpenImageIOBitForBit) {
                             std::numeric_limits<float>::infinity(),
                             -std::numeric_limits<float>::infinity(),
                             std::numeric_limits<float>::quiet_NaN()};
-  for (const auto& [width, height] : std::vector<std::pair<int, int>>{{1, 1}, {37, 19}, {64, 16}, {256, 33}}) {
+  for (const auto& size : std::vector<std::pair<int, int>>{{1, 1}, {37, 19}, {64, 16}, {256, 33}}) {
+    const int width = size.first, height = size.second;  // named: lambdas below capture them
     for (const bool smooth : {false, true}) {
       const std::string name = "written_" + std::to_string(width) + "x" + std::to_string(height) +
                                (smooth ? "_smooth" : "_rough") + ".exr";
