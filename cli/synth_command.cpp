@@ -295,6 +295,19 @@ double rms(const std::vector<double>& values) {
   return values.empty() ? 0 : std::sqrt(sum / static_cast<double>(values.size()));
 }
 
+// The values a PNG over `range` with `levels` steps gives back for `values`: each rounded to
+// its pixel, as the writer stores it (values outside the range are refused there).
+std::vector<double> as_stored(const std::vector<double>& values, const validation::IntegerRange& range,
+                              double levels) {
+  const double width = range.high - range.low;
+  std::vector<double> stored(values.size());
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const double pixel = std::clamp(std::nearbyint((values[k] - range.low) / width * levels), 0.0, levels);
+    stored[k] = range.low + width * (pixel / levels);
+  }
+  return stored;
+}
+
 // How one surface's frames are made and stored: the choices run_synth takes from the flags.
 struct SurfaceWriting {
   ImplChoice impl;
@@ -334,6 +347,7 @@ void write_surface(const reference::OceanCase& ocean, const fs::path& dir,
   options.backend = w.impl.backend;
   options.precision = w.precision;
   const impls::Synthesizer synthesizer(ocean, options);  // unknown backends name the valid ones
+  double png_roundoff = 0, png_mean_square0 = 0;
   for (int f = 0; f < ocean.frames; ++f) {
     reference::FieldFrame frame = synthesizer.frame(ocean.time(f));
     if (first_surface && f == 0) {
@@ -341,16 +355,19 @@ void write_surface(const reference::OceanCase& ocean, const fs::path& dir,
       first_surface->dx = frame.fields.at(Field::disp_x);
       first_surface->dy = frame.fields.at(Field::disp_y);
     }
-    if (w.png && f == 0) {
-      // The gate judges PNG frames by their quantization (frame_io.hpp): refuse before writing
-      // a PNG whose step would hide every wave vector from it.
+    if (w.png) {
+      // The gate judges PNG frames by their quantization (frame_io.hpp) as it reads them back:
+      // the largest unit roundoff of any field in any frame, against frame 0's mean square
+      // height. Refuse, before writing this frame, a PNG whose step would hide every wave vector
+      // from it.
       const validation::IntegerRange range = w.write_options.png_range;
-      double u = 0;
+      const double levels = w.write_options.png_bits == 8 ? 255.0 : 65535.0;
       for (Field field : w.fields) {
-        u = std::max(u, validation::quantization_roundoff(range, 65535.0, frame.fields.at(field)));
+        const auto stored = as_stored(frame.fields.at(field), range, levels);
+        png_roundoff = std::max(png_roundoff, validation::quantization_roundoff(range, levels, stored));
+        if (f == 0 && field == Field::height) png_mean_square0 = std::pow(rms(stored), 2);
       }
-      const double h_rms = rms(frame.fields.at(Field::height));
-      validation::require_judgeable_rounding(ocean, u, h_rms * h_rms);
+      validation::require_judgeable_rounding(ocean, png_roundoff, png_mean_square0);
     }
     const auto& j = frame.fields.at(Field::jacobian);
     const double min_j = *std::min_element(j.begin(), j.end());

@@ -307,6 +307,7 @@ class Analysis {
   std::size_t count() const { return count_; }
   double log2n() const { return log2n_; }
   double unit_roundoff() const { return u_; }
+  std::size_t sample_count() const { return count_; }
   double scale() const { return scale_; }
   const std::vector<double>& times() const { return times_; }
   const std::vector<double>& mu() const { return shared_->mu; }
@@ -1138,6 +1139,19 @@ std::string explain_mixed_frequencies(const Analysis& a, const std::vector<const
                      median(r1), median(r2), residuals.size());
 }
 
+// The median of (value, weight) pairs by weight: the first value, in increasing order, at which
+// the weights reach half their sum. Reorders `pairs`.
+double energy_weighted_median(std::vector<std::pair<double, double>>& pairs) {
+  std::sort(pairs.begin(), pairs.end());
+  double total = 0, half = 0;
+  for (const auto& p : pairs) total += p.second;
+  for (const auto& p : pairs) {
+    half += p.second;
+    if (half >= total / 2) return p.first;
+  }
+  return pairs.back().first;
+}
+
 Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
   if (a.times().size() < 3) {
     report.skipped.push_back("dispersion: needs ≥ 3 frames (the fit has 2 complex unknowns per k)");
@@ -1173,26 +1187,30 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
   if (strongest.size() > 24) strongest.resize(24);
   const auto& series = a.wave_series();
   std::vector<std::pair<double, double>> ratios;  // (ω measured / ω case, energy)
+  std::vector<std::pair<double, double>> rounding;  // (what rounding can move that ratio by, energy)
   std::vector<MeasuredOmega> measured;
+  // The stored numbers' rounding is noise of power u² mean(h²)/N on each wave vector's
+  // coefficient in each frame (resolution_floor's), which moves the phase of a wave of power P
+  // by about √(noise/2P) a frame; a frequency fitted to F frames over a span T moves by that ×
+  // √(12/F)/T (the standard error of a regression slope). Six such errors, relative to ω: far
+  // below 10⁻⁶ for the waves that carry a sea's energy, but not for waves barely above the
+  // resolution floor, which are all a case leaves below the frames' Nyquist frequency when its
+  // energy lies above it.
+  const double frames = double(a.times().size());
+  const double span = a.times().back() - a.times().front();
+  const double noise = a.unit_roundoff() * a.unit_roundoff() * a.mean_square0() / double(a.sample_count());
   for (const WaveFit* f : strongest) {
     const std::size_t w = std::size_t(f->wave - a.waves().data());
     const double omega = best_omega(f->wave->omega, max_omega, a.times(), series[w]);
     ratios.push_back({omega / f->wave->omega, f->energy});
+    const double power = f->energy / frames;
+    rounding.push_back({power > 0 ? 6 * std::sqrt(noise / (2 * power)) * std::sqrt(12 / frames) /
+                                        (f->wave->omega * span)
+                                  : 0.0,
+                        f->energy});
     measured.push_back({f->wave->k, omega});
   }
-  double ratio = 1;
-  if (!ratios.empty()) {
-    std::sort(ratios.begin(), ratios.end());
-    double total = 0, half = 0;
-    for (auto& r : ratios) total += r.second;
-    for (auto& r : ratios) {
-      half += r.second;
-      if (half >= total / 2) {
-        ratio = r.first;
-        break;
-      }
-    }
-  }
+  const double ratio = ratios.empty() ? 1 : energy_weighted_median(ratios);
   // More than 1 % left by one frequency pair: look for two.
   std::string mixed;
   if (fraction > std::max(bound, 1e-2) && a.times().size() >= 6) {
@@ -1226,7 +1244,8 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
                           "no single ω per wave vector — " + mixed));
   } else if (!ratios.empty()) {
     const double error = std::abs(ratio - 1);
-    const double omega_bound = std::max(1e-6, 64 * a.unit_roundoff() * a.log2n());
+    const double omega_bound = std::max({1e-6, 64 * a.unit_roundoff() * a.log2n(),
+                                         energy_weighted_median(rounding)});
     out.push_back(bounded(
         "dispersion.omega", a.subject(), error, omega_bound,
         fmt::format("|ω measured / ω(k) − 1| ≤ {:.1e} (energy-weighted median)", omega_bound),

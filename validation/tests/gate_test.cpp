@@ -642,6 +642,25 @@ TEST_F(GateCli, ExrFramesNeedNoOpenImageIO) {
   EXPECT_TRUE(contains(tiff.output, "/nonexistent/libswell_openimageio.so")) << tiff.output;
 }
 
+// A PNG's quantization is judged over every frame, by synth as by the gate: here frame 0's
+// rounding leaves waves the gate can judge, frame 1's does not (a drawn case of the soak
+// property test, which synth had accepted and the gate refused). One frame is accepted and
+// judged; two are refused by synth, naming the rule, with nothing left on disk.
+TEST_F(GateCli, SynthRefusesAPngWhoseLaterFrameTheGateWouldRefuse) {
+  const std::string synth =
+      "synth --model jonswap --hs 0.127381 --tp 7.03813 --gamma 3.5451 --spreading donelan-banner "
+      "--wind-dir -92.6847 --n 16 --length 26.8104 --choppiness 1.06091 --dt 1.36372 --seed 872668 "
+      "--precision fp32 --impl radix2 --format png --value-range -6.21506,6.21506";
+  const CliRun one = swell(synth + " --frames 1 --out " + path("one"));
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const CliRun gate = swell("gate --case " + path("one/case.toml"));
+  EXPECT_TRUE(gate.exit_code == 0 || gate.exit_code == 1) << gate.output;
+  const CliRun two = swell(synth + " --frames 2 --out " + path("two"));
+  EXPECT_EQ(two.exit_code, 2) << two.output;
+  EXPECT_TRUE(contains(two.output, "hides every wave vector")) << two.output;
+  EXPECT_FALSE(fs::exists(path("two/frame_0000.png")));
+}
+
 // The gate's analysis transforms are FFTW estimate plans, and FFTW gives an estimate plan any
 // wisdom the process holds: the user's cache of MEASURE-class wisdom (left by swell bench or
 // swell fft) once changed the report's last digits; impls/src/fftw.cpp now loads the cache only
