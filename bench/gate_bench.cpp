@@ -7,14 +7,14 @@
 //                             a set of three additive cascades of N² each, patches 1600, 400
 //                             and 100 m, bands [0, 0.2), [0.2, 0.8), [0.8, 6.4) rad/m
 //                             (data/cases/three_cascades.toml), F frames each, judged per
-//                             cascade and as a set (issue 15: gate_cascades/256/16 under 1 s
+//                             cascade and as a set (target: gate_cascades/256/16 under 1 s
 //                             with 2 threads)
 //
 // Setup, not timed: the frames of a JONSWAP case (Hs 3 m, Tp 8 s, γ 3.3, cos2s s = 10, 1000 m
 // patch, dt 0.1 s) are synthesized once in fp32 through FFTW and written as EXR with their
-// case.toml into a temporary directory, removed at exit. The targets: gate/512/64 under 2 s
-// (issue 5), then under 1.0 s (issue 17, with the same reports: GateGolden in swell_gate_catalogue_tests),
-// with 2 threads on the 2-core reference machine.
+// case.toml into a temporary directory, removed at exit. The target: gate/512/64 under 1.0 s
+// with 2 threads on the 2-core reference machine, with the reports GateGolden in
+// swell_gate_catalogue_tests holds.
 //
 // Counters per run: read_s (case and frames) and judge_s (the checks), wall clock; cpu_s, the
 // CPU time of every thread (on a shared machine real_time grows with the others' load, cpu_s
@@ -40,9 +40,9 @@
 #include "bench_support.hpp"
 #include "swell/impls/synthesizer.hpp"
 #include "swell/reference/ocean_case.hpp"
-#include "swell/validation/case_file.hpp"
-#include "swell/validation/frame_io.hpp"
-#include "swell/validation/gate.hpp"
+#include "swell/validation/io/case_file.hpp"
+#include "swell/validation/io/frame_io.hpp"
+#include "swell/validation/gate/gate.hpp"
 
 namespace {
 

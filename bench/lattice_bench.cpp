@@ -1,5 +1,5 @@
-// Lattice frames against grid frames at equal point count (docs/lattice.md; DESIGN.md §1
-// "Sampling"): Synthesizer::evaluate — the spectrum assembly, the inverse transforms and the
+// Lattice frames against grid frames at equal point count (docs/lattice.md; docs/conventions.md
+// §2.1): Synthesizer::evaluate — the spectrum assembly, the inverse transforms and the
 // unpack into all six fields — into a preallocated buffer, on a rank-1 lattice of N points (one
 // row of N classes, 1-D transforms of size N) and on the n × n grid with n² = N.
 //

@@ -10,10 +10,10 @@
 #include "commands.hpp"
 #include "swell/impls/transform.hpp"
 #include "swell/reference/errors.hpp"
-#include "swell/validation/ocean_matrix.hpp"
-#include "swell/validation/reference_checks.hpp"
-#include "swell/validation/report.hpp"
-#include "swell/validation/transform_checks.hpp"
+#include "swell/validation/checks/ocean_matrix.hpp"
+#include "swell/validation/checks/reference_checks.hpp"
+#include "swell/validation/results/report.hpp"
+#include "swell/validation/checks/transform_checks.hpp"
 
 namespace swell::cli {
 namespace {

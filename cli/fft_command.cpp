@@ -18,7 +18,7 @@
 #include "commands.hpp"
 #include "swell/impls/transform.hpp"
 #include "swell/reference/errors.hpp"
-#include "swell/validation/npy.hpp"
+#include "swell/validation/io/npy.hpp"
 
 namespace swell::cli {
 namespace {

@@ -33,17 +33,19 @@
 #include "commands.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/sampling_validity.hpp"
-#include "swell/validation/buoy_fit.hpp"
-#include "swell/validation/buoy_spectrum.hpp"
-#include "swell/validation/case_file.hpp"
-#include "swell/validation/frame_io.hpp"
-#include "swell/validation/jonswap_fit.hpp"
-#include "swell/validation/report.hpp"
+#include "swell/validation/fit/buoy_fit.hpp"
+#include "swell/validation/fit/buoy_record.hpp"
+#include "swell/validation/fit/buoy_spectrum.hpp"
+#include "swell/validation/io/case_file.hpp"
+#include "swell/validation/io/frame_io.hpp"
+#include "swell/validation/fit/jonswap_fit.hpp"
+#include "swell/validation/results/report.hpp"
 
 namespace swell::cli {
 namespace {
 
 namespace fs = std::filesystem;
+using validation::estimate_json;
 using validation::json_number;
 
 struct FitOptions {
@@ -80,23 +82,6 @@ reference::FrameSequence read_realization(const std::string& input,
         reference::channel_name(reference::Field::height);
   }
   return validation::read_frames(with_channels, input);
-}
-
-// An uncalibrated interval is not given as "ci95" (null there), so that no reader takes it for
-// a 95 % interval; what the method gave is under "ci95_uncalibrated", with the reason.
-nlohmann::json estimate_json(const validation::Estimate& e) {
-  const nlohmann::json interval = {json_number(e.ci95_low), json_number(e.ci95_high)};
-  nlohmann::json j = {{"value", json_number(e.value)},
-                      {"ci95", e.calibrated ? interval : nlohmann::json(nullptr)},
-                      {"se", json_number(e.standard_error)},
-                      {"method", e.method},
-                      {"calibrated", e.calibrated},
-                      {"effective_ordinates", json_number(e.effective_ordinates)}};
-  if (!e.calibrated) {
-    j["ci95_uncalibrated"] = interval;
-    j["reason"] = e.reason;
-  }
-  return j;
 }
 
 int run_fit(const FitOptions& o) {
@@ -211,18 +196,6 @@ int run_fit(const FitOptions& o) {
 
 // ---------------------------------------------------------------- swell fit --spectrum
 
-// One hour of the buoy form: what was measured, what was fitted.
-struct BuoyRow {
-  validation::BuoyHour time;
-  const validation::BuoySpectrumRecord* spectrum = nullptr;
-  const validation::BuoySummaryRecord* summary = nullptr;
-  double hs_moments = NAN, hs_rounding = NAN, tp_peak = NAN;
-  double wvht = NAN, dominant_period = NAN, apd = NAN;
-  std::string dominant_source;  // "SwP" or "WWP": the period of the larger of SwH and WWH
-  std::optional<bool> wvht_agrees;
-  std::optional<validation::BuoyFit> fit;
-  std::string fit_error;        // why an hour has no fit (no energy, too few bands)
-};
 
 // Runs gnuplot on `script` inside `dir`; "" on success, else what went wrong. (The same as the
 // report's figures do; kept here because this figure is a two-panel multiplot with interval
@@ -253,7 +226,8 @@ std::string render_gnuplot(const fs::path& dir, const std::string& script) {
 
 // <stem>.dat and <stem>.gp beside <stem>.png: Hs (WVHT, 4√m0, fitted with its 95 % interval)
 // and Tp (peak band, the summary's dominant period, fitted with its interval) over the record.
-std::string write_buoy_plot(const std::string& png, const std::vector<BuoyRow>& rows,
+std::string write_buoy_plot(const std::string& png,
+                            const std::vector<validation::BuoyRecordHour>& rows,
                             const std::string& title) {
   const fs::path path(png);
   if (path.extension() != ".png") {
@@ -310,235 +284,20 @@ std::string write_buoy_plot(const std::string& png, const std::vector<BuoyRow>& 
   return render_gnuplot(dir, stem + ".gp");
 }
 
-nlohmann::json misfit_json(const validation::BuoyMisfit& m) {
-  return {{"deviance", json_number(m.deviance)},
-          {"deviance_dof", m.deviance_dof},
-          {"deviance_p", json_number(m.deviance_p)},
-          {"dispersion", json_number(m.dispersion)},
-          {"energy_model", json_number(m.energy_model)},
-          {"energy_measured", json_number(m.energy_measured)},
-          {"energy_t", json_number(m.energy_t)},
-          {"energy_t_limit", json_number(m.energy_t_limit)},
-          {"energy_misfit", m.energy_misfit},
-          {"second_peak", m.second_peak},
-          {"second_peak_frequency", m.second_peak ? json_number(m.second_peak_frequency) : nullptr},
-          {"second_peak_energy_fraction",
-           m.second_peak ? json_number(m.second_peak_energy_fraction) : nullptr},
-          {"second_peak_z", m.second_peak ? json_number(m.second_peak_z) : nullptr},
-          {"flagged", m.flagged},
-          {"reason", m.reason}};
-}
-
 // Fits every hour of an NDBC spectral-density file; with --summary, pairs each hour with the
 // summary's (by hour: spectra at :50, summaries at :40) and compares 4√m0 with WVHT. Exit 0 when
 // every hour with energy was fitted and converged, 1 when one did not converge, 2 on bad input.
 // A flagged hour (one JONSWAP cannot describe it) is information, not failure.
 int run_buoy_fit(const FitOptions& o) {
   require(std::isfinite(o.dof) && o.dof > 0, "--dof", "finite and > 0", o.dof);
-  const auto spectra = validation::read_ndbc_spectral_density(o.spectrum);
-  std::vector<validation::BuoySummaryRecord> summaries;
-  if (!o.summary.empty()) summaries = validation::read_ndbc_summary(o.summary);
-  const auto bands = validation::spectral_bands(spectra.frequency);
   validation::BuoyFitOptions options;
   options.dof = o.dof;
-  const auto paired = validation::pair_by_hour(spectra, summaries);
-
-  std::vector<BuoyRow> rows;
-  int not_converged = 0;
-  for (const auto& p : paired) {
-    BuoyRow r;
-    r.time = p.spectrum->time;
-    r.spectrum = p.spectrum;
-    r.summary = p.summary;
-    const auto& s = p.spectrum->density;
-    r.hs_moments = validation::moment_significant_height(s, bands);
-    r.hs_rounding = validation::moment_height_rounding(s, bands, options.quantum);
-    r.tp_peak = validation::peak_band_period(s, bands);
-    if (p.summary) {
-      r.wvht = p.summary->wvht;
-      r.apd = p.summary->average_period;
-      const double swh = p.summary->swell_height, wwh = p.summary->wind_sea_height;
-      const bool swell = std::isfinite(swh) && (!std::isfinite(wwh) || swh >= wwh);
-      r.dominant_source = swell ? "SwP" : "WWP";
-      r.dominant_period = swell ? p.summary->swell_period : p.summary->wind_sea_period;
-      if (!std::isfinite(r.dominant_period)) {  // e.g. SwH 0.0 with SwP "MM": take the other
-        r.dominant_source = swell ? "WWP" : "SwP";
-        r.dominant_period = swell ? p.summary->wind_sea_period : p.summary->swell_period;
-      }
-      if (!std::isfinite(r.dominant_period)) r.dominant_source.clear();
-      if (std::isfinite(r.wvht) && std::isfinite(r.hs_moments)) {
-        r.wvht_agrees = validation::height_agrees_with_wvht(r.hs_moments, r.wvht, s, bands,
-                                                            options.quantum);
-      }
-    }
-    try {
-      r.fit = validation::fit_buoy_spectrum(s, bands, options);
-      if (!r.fit->converged) ++not_converged;
-    } catch (const InvalidInput& e) {
-      // One hour without energy does not make the file bad input; it is reported.
-      r.fit_error = fmt::format("{} line {}: {}", o.spectrum, p.spectrum->line, e.what());
-    }
-    rows.push_back(std::move(r));
-  }
-
-  // The summary of the week.
-  int paired_hours = 0, agree = 0, flagged = 0, fitted = 0, second_peaks = 0, energy = 0,
-      deviance_rejects = 0;
-  std::vector<double> dispersions;
-  double largest_difference = 0;
-  std::string largest_at;
-  for (const auto& r : rows) {
-    if (r.summary) ++paired_hours;
-    if (r.wvht_agrees) {
-      agree += *r.wvht_agrees;
-      const double d = std::abs(r.hs_moments - r.wvht);
-      if (d >= largest_difference) largest_difference = d, largest_at = r.time.iso();
-    }
-    if (r.fit) {
-      ++fitted;
-      flagged += r.fit->misfit.flagged;
-      second_peaks += r.fit->misfit.second_peak;
-      energy += r.fit->misfit.energy_misfit;
-      deviance_rejects += r.fit->misfit.deviance_p < validation::kDevianceAlpha;
-      dispersions.push_back(r.fit->misfit.dispersion);
-    }
-  }
-  int compared = 0;
-  for (const auto& r : rows) compared += r.wvht_agrees.has_value();
-
-  if (!o.json.empty()) {
-    nlohmann::json hours = nlohmann::json::array();
-    for (const auto& r : rows) {
-      nlohmann::json h = {
-          {"time", r.time.iso()},
-          {"spectrum_line", r.spectrum->line},
-          {"summary_line", r.summary ? nlohmann::json(r.summary->line) : nlohmann::json(nullptr)},
-          {"separation_frequency", json_number(r.spectrum->separation_frequency)},
-          {"hs_moments", json_number(r.hs_moments)},
-          {"hs_moments_rounding", json_number(r.hs_rounding)},
-          {"tp_peak_band", json_number(r.tp_peak)},
-          {"wvht", json_number(r.wvht)},
-          {"wvht_difference", json_number(r.hs_moments - r.wvht)},
-          {"wvht_agrees", r.wvht_agrees ? nlohmann::json(*r.wvht_agrees) : nlohmann::json(nullptr)},
-          {"dominant_period", json_number(r.dominant_period)},
-          {"dominant_period_source",
-           r.dominant_source.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.dominant_source)},
-          {"average_period", json_number(r.apd)}};
-      if (r.fit) {
-        h["fit"] = {{"hs", estimate_json(r.fit->hs)},
-                    {"tp", estimate_json(r.fit->tp)},
-                    {"gamma", estimate_json(r.fit->gamma)}};
-        h["converged"] = r.fit->converged;
-        h["interval_dispersion"] = json_number(r.fit->dispersion);
-        h["misfit"] = misfit_json(r.fit->misfit);
-        h["bands_used"] = r.fit->bands_used;
-        h["censored_bands"] = r.fit->censored_bands;
-        h["window_low"] = json_number(r.fit->window_low);
-        h["bands_below_window"] = r.fit->bands_below_window;
-        h["negative_log_likelihood"] = json_number(r.fit->negative_log_likelihood);
-      } else {
-        h["fit"] = nullptr;
-        h["fit_error"] = r.fit_error;
-      }
-      hours.push_back(std::move(h));
-    }
-    const nlohmann::json document = {
-        {"spectrum_file", o.spectrum},
-        {"summary_file", o.summary.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.summary)},
-        {"band_convention", validation::band_convention_name(bands.convention)},
-        {"dof_per_0_01_hz", json_number(options.dof)},
-        {"quantum", json_number(options.quantum)},
-        {"sigma_a", options.sigma_a},
-        {"sigma_b", options.sigma_b},
-        {"deviance_alpha", validation::kDevianceAlpha},
-        {"shape_alpha", validation::kShapeAlpha},
-        {"hours", hours},
-        {"summary",
-         {{"hours", rows.size()},
-          {"paired", paired_hours},
-          {"wvht_compared", compared},
-          {"wvht_agree", agree},
-          {"wvht_largest_difference", compared ? json_number(largest_difference) : nullptr},
-          {"fitted", fitted},
-          {"flagged", flagged},
-          {"second_peak", second_peaks},
-          {"energy_misfit", energy},
-          {"deviance_rejects", deviance_rejects},
-          {"not_converged", not_converged}}}};
-    write_json(o.json, document);
-  }
-  if (o.json != "-") {
-    fmt::print(
-        "swell fit --spectrum: JONSWAP (Hs, Tp, γ; σa {}, σb {}) by maximum likelihood, band "
-        "values χ²_ν/ν with ν = {:g} per 0.01 Hz; {}\n"
-        "{} hours; bands: {} ({} from {:.4f} to {:.4f} Hz)\n\n",
-        options.sigma_a, options.sigma_b, options.dof, o.spectrum, rows.size(),
-        validation::band_convention_name(bands.convention), bands.centre.size(),
-        bands.centre.front(), bands.centre.back());
-    fmt::print("{:<17} {:>5} {:>4} {:>6} {:>22} {:>5} {:>4} {:>22} {:>18} {:>4} {:>7} {:>5}  {}\n", "hour",
-               "4√m0", "WVHT", "Δ", "fitted Hs [95 %]", "Tp pk", "dom", "fitted Tp [95 %]",
-               "γ [95 %]", "APD", "p(dev)", "φ", "misfit");
-    auto interval = [](const validation::Estimate& e, int precision) {
-      return fmt::format("{:.{}f} [{:.{}f}, {:.{}f}]{}", e.value, precision, e.ci95_low, precision,
-                         e.ci95_high, precision, e.calibrated ? " " : "*");
-    };
-    for (const auto& r : rows) {
-      const std::string dominant =
-          std::isfinite(r.dominant_period) ? fmt::format("{:.1f}", r.dominant_period) : "—";
-      const std::string difference =
-          r.wvht_agrees ? fmt::format("{:+.3f}{}", r.hs_moments - r.wvht, *r.wvht_agrees ? "" : "!")
-                        : "—";
-      const std::string wvht = std::isfinite(r.wvht) ? fmt::format("{:.1f}", r.wvht) : "—";
-      if (!r.fit) {
-        fmt::print("{:<17} {:>5.2f} {:>4} {:>6}  no fit: {}\n", r.time.iso(), r.hs_moments, wvht,
-                   difference, r.fit_error);
-        continue;
-      }
-      const auto& f = *r.fit;
-      std::string misfit = f.misfit.second_peak
-                               ? fmt::format("2nd peak {:.1f} s ({:.0f} %)",
-                                             1 / f.misfit.second_peak_frequency,
-                                             100 * f.misfit.second_peak_energy_fraction)
-                               : std::string();
-      if (f.misfit.energy_misfit) {
-        misfit += fmt::format("{}energy {:.0f} % (t {:+.1f})", misfit.empty() ? "" : ", ",
-                              100 * f.misfit.energy_model / f.misfit.energy_measured,
-                              f.misfit.energy_t);
-      }
-      fmt::print("{:<17} {:>5.2f} {:>4} {:>6} {:>22} {:>5.1f} {:>4} {:>22} {:>18} {:>4} {:>7.1e} {:>5.1f}  {}\n",
-                 r.time.iso(), r.hs_moments, wvht, difference, interval(f.hs, 2), r.tp_peak,
-                 dominant, interval(f.tp, 2), interval(f.gamma, 1),
-                 std::isfinite(r.apd) ? fmt::format("{:.1f}", r.apd) : "—", f.misfit.deviance_p,
-                 f.misfit.dispersion, misfit);
-    }
-    fmt::print(
-        "\n*: no calibrated 95 % interval (the hour is flagged, or the profile does not close); "
-        "the JSON gives the reason.\n"
-        "Intervals: profile likelihood, quasi-likelihood where φ = deviance/dof > 1 (threshold "
-        "1.92·φ; McCullagh & Nelder 1989 §9.2). p(dev): the χ² test of exact JONSWAP at this ν "
-        "(graded information, not the flag).\n"
-        "dom: the summary's SwP or WWP, whichever belongs to the larger of SwH and WWH (the summary "
-        "has no DPD); APD: its average period.\n");
-    if (!o.summary.empty()) {
-      fmt::print(
-          "\nWVHT: {} of {} hours paired with the summary; 4√m0 agrees with WVHT (within 0.05 m "
-          "and the 0.001 m²/Hz rounding of S) in {} of {}; largest |4√m0 − WVHT| = {:.3f} m ({})\n",
-          paired_hours, rows.size(), agree, compared, largest_difference, largest_at);
-    }
-    std::sort(dispersions.begin(), dispersions.end());
-    const auto quantile = [&](double q) {
-      return dispersions.empty() ? NAN : dispersions[std::size_t(q * double(dispersions.size() - 1) + 0.5)];
-    };
-    fmt::print(
-        "misfit: {} of {} fitted hours flagged as not one JONSWAP ({} with a second significant "
-        "peak, {} whose fitted energy disagrees with the measured at p < {:g}); φ = deviance/dof "
-        "{:.1f}–{:.1f}, median {:.1f}; the χ² test rejects exact JONSWAP (p < {:g}) in {} hours\n",
-        flagged, fitted, second_peaks, energy, validation::kShapeAlpha, quantile(0), quantile(1),
-        quantile(0.5), validation::kDevianceAlpha, deviance_rejects);
-  }
+  const auto record = validation::fit_buoy_record(o.spectrum, o.summary, options);
+  if (!o.json.empty()) write_json(o.json, validation::buoy_record_json(record));
+  if (o.json != "-") fmt::print("{}", validation::render_buoy_record(record));
   if (!o.plot.empty()) {
     const std::string problem =
-        write_buoy_plot(o.plot, rows, fmt::format("{}: fitted JONSWAP against measured Hs and Tp",
+        write_buoy_plot(o.plot, record.hours, fmt::format("{}: fitted JONSWAP against measured Hs and Tp",
                                                   fs::path(o.spectrum).filename().string()));
     if (!problem.empty()) {
       fmt::print(stderr, "swell: the figure's .dat and .gp are written, its PNG is not: {}\n", problem);
@@ -546,9 +305,9 @@ int run_buoy_fit(const FitOptions& o) {
       fmt::print("figure: {} (with its .dat and .gp)\n", o.plot);
     }
   }
-  if (not_converged > 0) {
+  if (record.summary.not_converged > 0) {
     fmt::print(stderr, "swell: numerical failure: the fit did not converge in {} hour(s)\n",
-               not_converged);
+               record.summary.not_converged);
     return 1;
   }
   return 0;

@@ -20,8 +20,8 @@
 
 #include "commands.hpp"
 #include "swell/reference/errors.hpp"
-#include "swell/validation/case_file.hpp"
-#include "swell/validation/gate.hpp"
+#include "swell/validation/io/case_file.hpp"
+#include "swell/validation/gate/gate.hpp"
 
 namespace swell::cli {
 namespace {
@@ -56,32 +56,33 @@ bool writable(const std::string& path) {
 }
 
 int run_gate_command(const GateCommandOptions& o) {
-  validation::GateOptions options;
-  options.alpha = o.alpha;
-  options.input_pattern = o.input;
-  options.threads = o.threads;
-  if (!o.quiet) {
-    // Progress for long runs, on standard error: always on a terminal; in a CI log only when
-    // the input is large (≥ 2²⁴ values, e.g. 64 frames of 512² heights), so that small runs
-    // print nothing but their report.
-    const auto case_file = validation::read_case_file(o.case_file);  // cheap; bad case: exit 2
-    const auto& grid = case_file.ocean.grid;
-    const double fields = double(std::max<std::size_t>(1, case_file.input.channels.size()));
-    const double values = double(case_file.ocean.frames) * grid.nx * grid.ny * fields;
-    if (isatty(fileno(stderr)) != 0 || values >= 0x1p24) {
-      options.progress = [](const std::string& message) {
-        fmt::print(stderr, "swell gate: {}\n", message);
-      };
-    }
-  }
-  // Bad output paths are bad input: found before the frames are read, not after.
+  // Bad output paths are bad input: found before anything is read.
   for (const auto& [path, what] : {std::pair{o.junit, "JUnit XML"}, std::pair{o.json, "JSON"}}) {
     if (path.empty() || path == "-") continue;
     if (!writable(path)) throw InvalidInput(fmt::format("cannot write {} to '{}'", what, path));
   }
   validation::GateReport report;
   try {
-    report = validation::run_gate(o.case_file, options);
+    validation::GateOptions options;
+    options.alpha = o.alpha;
+    options.input_pattern = o.input;
+    options.threads = o.threads;
+    options.validate();
+    const auto case_file = validation::read_case_file(o.case_file);
+    if (!o.quiet) {
+      // Progress for long runs, on standard error: always on a terminal; in a CI log only when
+      // the input is large (≥ 2²⁴ values, e.g. 64 frames of 512² heights), so that small runs
+      // print nothing but their report.
+      const auto& grid = case_file.ocean.grid;
+      const double fields = double(std::max<std::size_t>(1, case_file.input.channels.size()));
+      const double values = double(case_file.ocean.frames) * grid.nx * grid.ny * fields;
+      if (isatty(fileno(stderr)) != 0 || values >= 0x1p24) {
+        options.progress = [](const std::string& message) {
+          fmt::print(stderr, "swell gate: {}\n", message);
+        };
+      }
+    }
+    report = validation::run_gate(case_file, options);
   } catch (const InvalidInput& e) {
     // The CI job's test report then shows why the gate could not judge (exit code 2).
     if (!o.junit.empty()) {

@@ -1,5 +1,5 @@
 // swell lattice --points N [--kind korobov|fibonacci] [--dim 2|3] [--length LX[,LY[,LZ]]]
-// [--json F]: a rank-1 lattice (DESIGN.md §1 "Sampling", docs/lattice.md) — its generator, its
+// [--json F]: a rank-1 lattice (docs/conventions.md §2.1, docs/lattice.md) — its generator, its
 // merits (the spectral test's shortest dual vector and λ₁, Zaremba's ρ, Sloan & Joe's P₂), the
 // band it covers (inscribed and covering radius, alias-free fraction) and the table of its wave
 // vectors k_m, m = 0 … N−1.

@@ -11,7 +11,7 @@
 #include "swell/reference/errors.hpp"
 #include "swell/reference/model_factory.hpp"
 #include "swell/reference/moments.hpp"
-#include "swell/validation/report.hpp"
+#include "swell/validation/results/report.hpp"
 
 namespace swell::cli {
 namespace {

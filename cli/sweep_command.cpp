@@ -29,7 +29,7 @@
 #include "mpi_world.hpp"
 #include "progress.hpp"
 #include "swell/reference/errors.hpp"
-#include "swell/validation/sweep.hpp"
+#include "swell/validation/sweep/sweep.hpp"
 
 namespace swell::cli {
 namespace {

@@ -25,16 +25,16 @@
 
 #include "commands.hpp"
 #include "swell/impls/synthesizer.hpp"
-#include "swell/validation/npy.hpp"
-#include "swell/validation/mesh_io.hpp"
+#include "swell/validation/io/npy.hpp"
+#include "swell/validation/io/mesh_io.hpp"
 #include "swell/reference/lattice_mesh.hpp"
 #include "swell/reference/lattice.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/model_factory.hpp"
 #include "swell/reference/sampling_validity.hpp"
-#include "swell/validation/case_file.hpp"
-#include "swell/validation/frame_io.hpp"
-#include "swell/validation/ocean_checks.hpp"
+#include "swell/validation/io/case_file.hpp"
+#include "swell/validation/io/frame_io.hpp"
+#include "swell/validation/checks/ocean_checks.hpp"
 
 namespace swell::cli {
 namespace {
@@ -101,7 +101,7 @@ struct SynthOptions {
   bool has(const std::string& flag) const { return given.at(flag)->count() > 0; }
 };
 
-// --impl lattice[:fft=NAME]: rank-1 lattice synthesis (DESIGN.md §1 "Sampling") through the
+// --impl lattice[:fft=NAME]: rank-1 lattice synthesis (docs/conventions.md §2.1) through the
 // 1-D transforms of backend NAME (default fftw; NAME may carry its own options, as
 // "fftw:threads=2"). Anything else is a grid backend.
 struct ImplChoice {

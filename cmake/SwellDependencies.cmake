@@ -44,7 +44,7 @@ swell_require("Ceres Solver" libceres-dev Ceres_FOUND)
 pkg_check_modules(OpenImageIO QUIET IMPORTED_TARGET OpenImageIO)
 swell_require("OpenImageIO" libopenimageio-dev OpenImageIO_FOUND)
 # OpenEXRCore's chunk table and libdeflate's zlib inflater: the direct reader of scanline EXR
-# frames (validation/src/exr_scanlines.cpp), several times faster than OpenImageIO's.
+# frames (validation/src/io/exr_scanlines.cpp), several times faster than OpenImageIO's.
 pkg_check_modules(OpenEXR QUIET IMPORTED_TARGET OpenEXR)
 swell_require("OpenEXR (OpenEXRCore)" libopenexr-dev OpenEXR_FOUND)
 pkg_check_modules(LIBDEFLATE QUIET IMPORTED_TARGET libdeflate)

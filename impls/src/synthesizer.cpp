@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include "device_frame.hpp"
+#include "synthesis/amplitudes.hpp"
 #include "swell/impls/phasor.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/phase.hpp"
@@ -36,103 +37,7 @@ constexpr int kComplexPairs = kRealFields / 2;
 // 16 in fp64) stays in L1/L2.
 constexpr int kLatticeBlock = 4096;
 
-// h̃0 of cascade `cascade` at its own wave index (n, m) on `grid`: the sea's Ψ times the band
-// weight w², with the cascade's own Δk and random numbers.
-std::complex<double> cascade_amplitude(const reference::DirectionalSpectrum& sea,
-                                       const OceanCase& c, const reference::Grid& grid,
-                                       const reference::BandWeight& band, int cascade, int n,
-                                       int m) {
-  const double dkx = grid.dkx(), dky = grid.dky();
-  const double kx = n * dkx, ky = m * dky;
-  const double w2 = band.everywhere() ? 1.0 : band.weight_squared(std::hypot(kx, ky));
-  if (w2 == 0) return 0.0;
-  const double psi = w2 * sea.psi(kx, ky);
-  const auto xi = reference::wave_noise(c.seed, n, m, 0, static_cast<std::uint32_t>(cascade));
-  // conventions §Amplitudes: (ξ1 + iξ2)/√2 · √(Ψ Δkx Δky / 2), so E|h̃0|² = ½ Ψ Δk².
-  return std::complex<double>(xi.xi1, xi.xi2) * std::sqrt(0.5 * psi * dkx * dky * 0.5);
-}
-
-// h̃0 at signed wave index (n, m) of the case's sampling, from the sea's (unweighted) Ψ. A
-// summed cascade set adds every cascade whose grid holds the wave vector: cascade c's index is
-// (n, m)·L_c/L, its weight, Δk and random numbers its own (reference/cascade.hpp).
-std::complex<double> amplitude(const reference::DirectionalSpectrum& sea, const OceanCase& c,
-                               int n, int m) {
-  // A lattice's caller asks only for the k_m of classes that carry energy (and their −k_m,
-  // which are k_(N−m)); only k = 0 is empty by the rule itself.
-  if (c.is_lattice() ? (n == 0 && m == 0) : !c.grid.carries_energy(n, m)) return 0.0;
-  if (!c.is_summed_cascades()) return cascade_amplitude(sea, c, c.grid, c.band, c.cascade, n, m);
-  std::complex<double> sum = 0.0;
-  for (const auto& member : c.members) {
-    const auto rx = static_cast<long long>(std::llround(c.grid.lx / member.grid.lx));
-    const auto ry = static_cast<long long>(std::llround(c.grid.ly / member.grid.ly));
-    if (n % rx != 0 || m % ry != 0) continue;
-    const int nc = static_cast<int>(n / rx), mc = static_cast<int>(m / ry);
-    const auto& g = member.grid;
-    if (nc < -(g.nx / 2) || nc >= (g.nx + 1) / 2 || mc < -(g.ny / 2) || mc >= (g.ny + 1) / 2 ||
-        !g.carries_energy(nc, mc)) {
-      continue;
-    }
-    sum += cascade_amplitude(sea, c, g, member.band, member.cascade, nc, mc);
-  }
-  return sum;
-}
-
-}  // namespace
-
-std::string to_string(Packing packing) {
-  switch (packing) {
-    case Packing::complex_pairs: return "complex_pairs";
-    case Packing::real: return "real";
-    case Packing::automatic: return "automatic";
-  }
-  return "?";
-}
-
-Packing packing_from_string(const std::string& name) {
-  if (name == "complex_pairs") return Packing::complex_pairs;
-  if (name == "real") return Packing::real;
-  if (name == "automatic") return Packing::automatic;
-  throw InvalidInput("unknown packing '" + name + "'; valid: complex_pairs, real, automatic");
-}
-
-std::string to_string(LatticeTransform transform) {
-  switch (transform) {
-    case LatticeTransform::automatic: return "automatic";
-    case LatticeTransform::one_pass: return "one_pass";
-    case LatticeTransform::four_step: return "four_step";
-  }
-  return "?";
-}
-
-LatticeTransform lattice_transform_from_string(const std::string& name) {
-  if (name == "automatic") return LatticeTransform::automatic;
-  if (name == "one_pass") return LatticeTransform::one_pass;
-  if (name == "four_step") return LatticeTransform::four_step;
-  throw InvalidInput("unknown lattice transform '" + name +
-                     "'; valid: automatic, one_pass, four_step");
-}
-
-std::complex<double> initial_amplitude(const OceanCase& ocean_case, int n, int m) {
-  return amplitude(*ocean_case.sea_spectrum(), ocean_case, n, m);
-}
-
-std::vector<std::complex<double>> initial_amplitudes(const OceanCase& ocean_case) {
-  if (ocean_case.is_lattice()) {
-    throw InvalidInput("initial_amplitudes: a grid case (a lattice's amplitudes are per class)");
-  }
-  const auto sea = ocean_case.sea_spectrum();
-  const auto& g = ocean_case.grid;
-  std::vector<std::complex<double>> out(std::size_t(g.nx) * g.ny);
-  for (int j = 0; j < g.ny; ++j) {
-    for (int i = 0; i < g.nx; ++i) {
-      out[std::size_t(j) * g.nx + i] = amplitude(*sea, ocean_case, reference::Grid::signed_index(i, g.nx),
-                                                 reference::Grid::signed_index(j, g.ny));
-    }
-  }
-  return out;
-}
-
-namespace {
+using synthesis::amplitude;
 
 // The per-row kernels are compiled for three instruction sets and picked when the program
 // loads (GCC function multiversioning): swell builds without -march, and with 4 or 8 doubles
@@ -175,7 +80,7 @@ struct RowTask {
   const Real* lambda_over_k = nullptr;  // [width]
   const Real* kx = nullptr;             // [nx]: kx of every column of a full row
   Real ky = 0, ky_mirror = 0;           // of row j and of row (ny − j) mod ny
-  // A lattice (one row of N classes, DESIGN.md §1 "Sampling"): ky of every class [nx], used
+  // A lattice (one row of N classes, docs/conventions.md §2.1): ky of every class [nx], used
   // instead of ky and ky_mirror; null on grids.
   const Real* ky_column = nullptr;
   Real* out = nullptr;         // row j of the first spectrum (interleaved re, im)

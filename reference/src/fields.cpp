@@ -28,10 +28,6 @@ std::string channel_name(Field field) {
   return "?";
 }
 
-std::string field_unit(Field field) {
-  return field == Field::height || field == Field::disp_x || field == Field::disp_y ? "m" : "1";
-}
-
 Field field_from_name(const std::string& name) {
   for (Field field : kAllFields) {
     if (name == field_name(field) || name == channel_name(field)) return field;

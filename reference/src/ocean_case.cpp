@@ -74,15 +74,6 @@ DirectionalSpectrumPtr OceanCase::directional_spectrum() const {
   return sea;
 }
 
-OceanCase OceanCase::member_case(const CascadeMember& member) const {
-  OceanCase out = *this;
-  out.members.clear();
-  out.grid = member.grid;
-  out.band = member.band;
-  out.cascade = member.cascade;
-  return out;
-}
-
 ModelSpec OceanCase::full_spectrum_spec() const {
   ModelSpec spec = spectrum;
   for (const char* common : {"gravity", "depth", "wind_dir"}) {

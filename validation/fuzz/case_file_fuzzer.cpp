@@ -9,7 +9,7 @@
 #include <string>
 
 #include "swell/reference/errors.hpp"
-#include "swell/validation/case_file.hpp"
+#include "swell/validation/io/case_file.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// libFuzzer target: the direct scanline EXR reader (validation/src/exr_scanlines.cpp) on
+// libFuzzer target: the direct scanline EXR reader (validation/src/io/exr_scanlines.cpp) on
 // arbitrary bytes, written to a file (the reader takes a path, as OpenEXRCore does). Its contract:
 // false for any file it does not take or cannot read — after which OpenImageIO reads the file and
 // names the problem — or true with every scanline of every channel asked for delivered once, top

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "swell/reference/errors.hpp"
-#include "swell/validation/npy.hpp"
+#include "swell/validation/io/npy.hpp"
 
 namespace {
 

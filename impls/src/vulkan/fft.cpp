@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "../backends.hpp"
+#include "../backends/backends.hpp"
 #include "swell/impls/vulkan.hpp"
 
 namespace swell::impls::vk {

@@ -1,5 +1,5 @@
-// The synthesizer's frame on a Vulkan device (docs/synthesis.md §vulkan; DESIGN §3: "a device
-// backend's frame is one submission"). At construction the tables of the waves go to device
+// The synthesizer's frame on a Vulkan device (docs/synthesis.md §vulkan: a device
+// backend's frame is one submission). At construction the tables of the waves go to device
 // memory once; each frame is then one command buffer and one fence wait:
 //
 //   evolution (impls/shaders/frame_evolve.comp)    h̃(k, t) of the half spectrum, one phase a wave

@@ -6,7 +6,10 @@
 
 #include "swell/reference/moments.hpp"
 #include "swell/impls/transform.hpp"
+// A room's header, and an old flat path (forwarding for one release).
 #include "swell/validation/check_result.hpp"
+#include "swell/validation/gate/gate.hpp"
+#include "swell/validation/results/check_result.hpp"
 
 int main() {
   const auto spectrum = swell::reference::PiersonMoskowitz::bretschneider(2.0, 7.0);

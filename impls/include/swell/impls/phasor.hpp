@@ -2,7 +2,7 @@
 // e^(iωt) of one wave for the synthesizer's spectrum assembly (impls/src/synthesizer.cpp): cos
 // and sin of the exact phase ω t, in plain arithmetic that a loop over waves vectorizes.
 // Header-only and always inlined, so that each of the assembly's instruction-set clones
-// (GCC target_clones) gets its own vector code. PhasorTest (validation/tests/phasor_test.cpp)
+// (GCC target_clones) gets its own vector code. PhasorTest (validation/tests/reference/phasor_test.cpp)
 // measures both precisions against glibc's sin and cos of reference::reduced_phase.
 #include <bit>
 #include <cmath>

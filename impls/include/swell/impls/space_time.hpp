@@ -1,5 +1,5 @@
 #pragma once
-// Space-time synthesis on a 3-D rank-1 lattice (issue 12 item 7; DESIGN.md §1 "Sampling",
+// Space-time synthesis on a 3-D rank-1 lattice (docs/conventions.md §2.1,
 // "Dispersion" with the loop period T, "Amplitudes").
 //
 // A loop-periodic surface is a trigonometric polynomial in (x, y, t). With the loop period T,

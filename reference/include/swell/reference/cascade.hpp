@@ -1,5 +1,5 @@
 #pragma once
-// Cascades (DESIGN.md §1 "Cascades", docs/cascades.md): an additive cascade set is h = Σ_c h_c,
+// Cascades (docs/conventions.md §2.2): an additive cascade set is h = Σ_c h_c,
 // cascade c a Tessendorf surface on its own grid n_c over its own patch L_c, whose amplitudes are
 // the conventions' times a band weight w_c(|k|), with Σ_c w_c(|k|)² = 1 wherever the spectrum
 // has energy. Random numbers are keyed by (seed, cascade c, n, m): cascade 0 alone is the

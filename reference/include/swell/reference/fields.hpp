@@ -27,7 +27,6 @@ inline constexpr std::array<Field, 6> kAllFields = {Field::height, Field::slope_
 
 std::string field_name(Field field);     // "height", "slope_x", …, "jacobian" (case files)
 std::string channel_name(Field field);   // EXR channel: "h", "sx", "sy", "dx", "dy", "J"
-std::string field_unit(Field field);     // "m" or "1"
 Field field_from_name(const std::string& name);  // either spelling; throws InvalidInput
 
 // One frame: the fields at one time, each nx·ny values, row-major with x fastest.

@@ -1,5 +1,5 @@
 #pragma once
-// Rank-1 lattices (Keller; DESIGN.md §1 "Sampling"): N points x_n = L ∘ ((n g / N) mod 1),
+// Rank-1 lattices (Keller; docs/conventions.md §2.1): N points x_n = L ∘ ((n g / N) mod 1),
 // n = 0…N−1, generator g ∈ ℤ^s (s = 2 or 3), box lengths L (metres; a third length may be a
 // time period: it is then only an axis of the same "patch metric").
 //

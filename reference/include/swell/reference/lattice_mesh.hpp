@@ -1,5 +1,5 @@
 #pragma once
-// The periodic Delaunay triangulation of a 2-D rank-1 lattice (DESIGN.md §1 Sampling, §4
+// The periodic Delaunay triangulation of a 2-D rank-1 lattice (docs/conventions.md §2.1, §4
 // lattice: "the periodic Delaunay triangulation from a reduced basis, two triangles per point").
 //
 // The lattice is taken as plain numbers: N points

@@ -46,7 +46,7 @@ struct OceanCase {
   double loop_period = 0;  // s; 0 = none, else ω is quantized down to multiples of 2π/T
   std::uint64_t seed = 0;
 
-  // Cascades (reference/cascade.hpp, DESIGN.md §1): this surface is cascade `cascade` of a set
+  // Cascades (reference/cascade.hpp, docs/conventions.md §2.2): this surface is cascade `cascade` of a set
   // (its random numbers keyed by it), its amplitudes weighted by `band`; or, when `members` is
   // not empty, it is the summed surface of an additive set on the fine grid `grid`, where
   // cascade c's wave vectors carry w_c² Ψ Δk_c² (its own Δk) with its own random numbers.
@@ -54,8 +54,6 @@ struct OceanCase {
   BandWeight band;
   std::vector<CascadeMember> members;
   bool is_summed_cascades() const { return !members.empty(); }
-  // This case as cascade `member` of the summed set: its grid, band and index, the rest shared.
-  OceanCase member_case(const CascadeMember& member) const;
 
   // Checks it and throws InvalidInput naming the first thing wrong.
   void validate() const;

@@ -1,5 +1,5 @@
 #pragma once
-// A sampling of a periodic patch (DESIGN.md §1 "Sampling"): a grid or a rank-1 lattice. It gives
+// A sampling of a periodic patch (docs/conventions.md §2.1): a grid or a rank-1 lattice. It gives
 // the sample points (metres), the integer wave vector of every spectral coefficient, which
 // coefficients carry energy, and which coefficient holds the conjugate wave. Everything that
 // judges frames works on a sampling: a lattice frame is judged by the same code as a grid frame.

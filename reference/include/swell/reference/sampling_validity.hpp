@@ -1,5 +1,5 @@
 #pragma once
-// One validity rule for a case on its sampling (DESIGN.md §3), shared by every command that
+// One validity rule for a case on its sampling (docs/case_files.md "Validity of a case on its grid"), shared by every command that
 // takes a case — synth, gate, fit, check — so that no command accepts what another refuses.
 // A case passes when, on its grid and in the number format its frames are made or stored in:
 //

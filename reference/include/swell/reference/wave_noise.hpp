@@ -7,7 +7,7 @@
 //
 // Mapping, fixed as part of the contract: key = {seed mod 2³², seed / 2³²}, counter =
 // {n, m, stream, cascade} as 32-bit two's complement (cascade 0: the single-grid surface; each
-// cascade of a set draws its own numbers, DESIGN.md §1 "Cascades"); the four output words (w0, w1, w2, w3) form two
+// cascade of a set draws its own numbers, docs/conventions.md §2.2); the four output words (w0, w1, w2, w3) form two
 // 64-bit integers (w0 + 2³² w1, w2 + 2³² w3), which r123::boxmuller turns into (ξ1, ξ2).
 #include <cstdint>
 

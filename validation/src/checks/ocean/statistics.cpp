@@ -1,0 +1,156 @@
+#include "checks/ocean/analysis.hpp"
+#include "swell/validation/stats/rounding.hpp"
+#include "swell/validation/stats/statistics.hpp"
+#include "swell/reference/phase.hpp"
+
+namespace swell::validation::ocean_analysis {
+
+Results check_statistics(const Analysis& a, OceanCheckReport& report) {
+  Results out;
+  const bool several_frames = a.times().size() >= 2;
+  const double alpha = a.options().alpha / (several_frames ? 4 : 3);
+  const auto& h = a.frames().field(0, Field::height);
+  const double n = double(a.count());
+
+  // Sample skewness and kurtosis of a Gaussian field on the torus: with covariance
+  // C(d) = Σk μ(k) e^(ik·d), Var(mean h³) = (6/n) Σd C(d)³ and the kurtosis linearizes to
+  // mean He4(h)/σ⁴ with Var = (24/n) Σd C(d)⁴ / σ⁸ (Isserlis; Σd C(d) = 0 as k = 0 is empty).
+  std::vector<Complex> mu_complex(a.mu().begin(), a.mu().end());
+  // On a lattice the differences of sample points are lattice points again (x_n − x_n' =
+  // x_(n−n')), so C over them is the lattice's own inverse transform of μ.
+  const auto covariance = field_from_spectrum(mu_complex, a.sampling());
+  double sigma2 = covariance[0], c3 = 0, c4 = 0;
+  for (double c : covariance) {
+    c3 += c * c * c;
+    c4 += c * c * c * c;
+  }
+  double m2 = 0, m3 = 0, m4 = 0;
+  for (double x : h) {
+    const double x2 = x * x;
+    m2 += x2;
+    m3 += x2 * x;
+    m4 += x2 * x2;
+  }
+  m2 /= n;
+  m3 /= n;
+  m4 /= n;
+  const double skewness = m3 / std::pow(m2, 1.5);
+  const double kurtosis = m4 / (m2 * m2) - 3;
+  // Plus the rounding of the normalized moments (64 u log2 N, the dispersion check's bound): a
+  // law of zero variance (one wave pair: a sampled cosine's skewness is exactly 0) is judged
+  // against rounding instead of dividing by zero; 16 u log2 N was measured too tight (a 16²
+  // surface of one wave pair showed 550 u, the command line's property test).
+  const double moment_rounding = rounding_budget(kCompoundRounding, a.unit_roundoff(), a.log2n());
+  const double sd_skew = std::hypot(std::sqrt(6 * std::max(c3, 0.0) / n) / std::pow(sigma2, 1.5),
+                                    moment_rounding);
+  const double sd_kurt = std::hypot(std::sqrt(24 * std::max(c4, 0.0) / n) / (sigma2 * sigma2),
+                                    moment_rounding);
+  const double z_skew = skewness / sd_skew, z_kurt = kurtosis / sd_kurt;
+  const double p_skew = stats::normal_two_sided_p(z_skew), p_kurt = stats::normal_two_sided_p(z_kurt);
+  out.push_back(statistical_check("statistics.skewness", a.subject(), skewness, 0.0, p_skew, alpha,
+                            fmt::format("p ≥ α = {:.1e}, sd {:.3g} from the spectrum", alpha, sd_skew),
+                            fmt::format("skewness of heights {:.3g} (z = {:.2f}){}", skewness, z_skew,
+                                        p_skew < alpha ? " — heights are not Gaussian" : "")));
+  out.push_back(statistical_check("statistics.kurtosis", a.subject(), kurtosis, 0.0, p_kurt, alpha,
+                            fmt::format("p ≥ α = {:.1e}, sd {:.3g} from the spectrum", alpha, sd_kurt),
+                            fmt::format("excess kurtosis of heights {:.3g} (z = {:.2f}){}", kurtosis,
+                                        z_kurt, p_kurt < alpha ? " — heights are not Gaussian" : "")));
+
+  // Gaussian amplitudes: u = I/μ are independent exponentials. Anderson–Darling against the
+  // exponential law with its scale estimated (mean u), so that this part judges the shape of
+  // the law only — an energy error is the energy check's to name.
+  std::vector<double> u;
+  double u_sum = 0;
+  for (const Wave& w : a.waves()) {
+    u.push_back(a.periodogram0(w.index) / w.mu);
+    u_sum += u.back();
+  }
+  const double u_mean = u_sum / double(u.size());
+  std::vector<double> cdf, log_survival;
+  for (double x : u) {
+    cdf.push_back(-std::expm1(-x / u_mean));
+    log_survival.push_back(-x / u_mean);
+  }
+  const double a2 = stats::anderson_darling_statistic(cdf, log_survival);
+  const double p_ad = stats::anderson_darling_exponential_p(a2, int(cdf.size()));
+  out.push_back(statistical_check(
+      "statistics.gaussian_amplitudes", a.subject(), a2, 1.0, p_ad, alpha,
+      fmt::format("p ≥ α = {:.1e} (Anderson–Darling, I/μ exponential, scale fitted, n = {})", alpha,
+                  cdf.size()),
+      fmt::format("A² = {:.3g} for the normalized periodogram{}", a2,
+                  p_ad < alpha ? " — the amplitudes are not complex Gaussian (|h̃|² not exponential: "
+                                 "uniform noise, or h̃0(k) and h̃0(−k) correlated?)"
+                               : "")));
+
+  // Hs steady: m0(t) − m0(t0) = 4 Σ half plane Re(a b̄ (e^(−2iωt) − e^(−2iωt0))), mean 0,
+  // variance 8 Σ τ+ τ− |e^(−2iωt) − e^(−2iωt0)|², plus rounding.
+  if (!several_frames) {
+    report.skipped.push_back({"statistics.hs_steady", SkipReason::too_few_frames, "needs ≥ 2 frames"});
+    return out;
+  }
+  const auto& times = a.times();
+  const double m0_first = a.mean_square0();
+  double worst_z = 0, hs_min = 1e300, hs_max = 0;
+  int worst_frame = 0;
+  // e^(−2iωt) once per distinct ω and frame (group_by_omega; one per wave vector was 7 % of the
+  // gate's CPU at 512² × 64 frames).
+  const auto& waves = a.half_plane();
+  const OmegaGroups by_omega = group_by_omega(waves);
+  auto phases_at = [&](double t, std::vector<Complex>& phases) {
+    phases.resize(by_omega.omegas.size());
+    for (std::size_t g = 0; g < by_omega.omegas.size(); ++g) {
+      phases[g] = reference::unit_phasor(-reference::reduced_phase(2 * by_omega.omegas[g], t));
+    }
+  };
+  std::vector<Complex> first_phase;  // e^(−2iωt0) per distinct ω
+  phases_at(times[0], first_phase);
+  const std::vector<double> sums = sums_of_squares<double>(heights(a.frames()));
+  // Σ over the waves for each frame, four frames side by side (each frame's sum sequential, as
+  // in sums_of_squares, so that their addition latencies overlap).
+  constexpr std::size_t kSideBySide = 4;
+  std::vector<double> variances(times.size(), 0.0);
+  std::vector<Complex> phase[kSideBySide];  // e^(−2iωt) per distinct ω of frames f … f + 3
+  for (std::size_t f = 1; f < times.size(); f += kSideBySide) {
+    const std::size_t together = std::min(kSideBySide, times.size() - f);
+    for (std::size_t j = 0; j < together; ++j) phases_at(times[f + j], phase[j]);
+    double sum[kSideBySide] = {};
+    auto add = [&](std::size_t frames_here) {
+      for (std::size_t i = 0; i < waves.size(); ++i) {
+        const Wave& w = waves[i];
+        const std::size_t g = by_omega.group[i];
+        const double weight = 8 * w.tau_plus * w.tau_minus;
+        for (std::size_t j = 0; j < frames_here; ++j) sum[j] += weight * std::norm(phase[j][g] - first_phase[g]);
+      }
+    };
+    if (together == kSideBySide) {
+      add(kSideBySide);  // a constant count: the four sums unrolled
+    } else {
+      add(together);
+    }
+    for (std::size_t j = 0; j < together; ++j) variances[f + j] = sum[j];
+  }
+  for (std::size_t f = 1; f < times.size(); ++f) {
+    const double m0 = sums[f] / n;  // mean_square of frame f
+    const double variance = variances[f] + std::pow(rounding_budget(kTransformRounding, a.unit_roundoff(), a.log2n()) * m0_first, 2);
+    const double z = (m0 - m0_first) / std::sqrt(variance);
+    if (std::abs(z) >= std::abs(worst_z)) {
+      worst_z = z;
+      worst_frame = int(f);
+    }
+    hs_min = std::min(hs_min, 4 * std::sqrt(m0));
+    hs_max = std::max(hs_max, 4 * std::sqrt(m0));
+  }
+  hs_min = std::min(hs_min, 4 * std::sqrt(m0_first));
+  hs_max = std::max(hs_max, 4 * std::sqrt(m0_first));
+  const double frames_compared = double(times.size() - 1);
+  const double p_steady = std::min(1.0, frames_compared * stats::normal_two_sided_p(worst_z));
+  out.push_back(statistical_check(
+      "statistics.hs_steady", a.subject(), 4 * std::sqrt(m0_first), hs_max - hs_min, p_steady, alpha,
+      fmt::format("p ≥ α = {:.1e} (Bonferroni over {} frames)", alpha, times.size() - 1),
+      fmt::format("Hs {:.4g}…{:.4g} m over {} frames; largest change z = {:.2f} at frame {}{}", hs_min,
+                  hs_max, times.size(), worst_z, worst_frame,
+                  p_steady < alpha ? " — Hs drifts over the frames" : "")));
+  return out;
+}
+
+}  // namespace swell::validation::ocean_analysis

@@ -1,0 +1,211 @@
+// The ocean checks' table and runner (ocean_checks.hpp, ocean_check_table.hpp); the analysis
+// they share and one file per check are in checks/ocean/.
+#include "swell/validation/checks/ocean_checks.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <optional>
+
+#include "checks/ocean/analysis.hpp"
+#include "common/parallel_tasks.hpp"
+#include "swell/validation/checks/ocean_check_table.hpp"
+
+namespace swell::validation {
+
+using namespace ocean_analysis;
+
+namespace {
+
+using CheckFunction = Results (*)(const Analysis&, OceanCheckReport&);
+
+struct TableEntry {
+  OceanCheckRow row;
+  CheckFunction run;
+  // What it reads that the analysis makes once for every check: the two-wave fit per wave
+  // vector (which needs the wave series), or the wave series alone (parseval, through the
+  // analysis backend, sums the series' transforms).
+  bool reads_wave_fits = false, reads_wave_series = false;
+};
+
+// Cost ranks: what each took at 512² × 64 frames on one thread of a 2-core machine (ms):
+// statistics 90, derived 85, dispersion 75, moments 75, direction 20, spectrum 17, hermitian 13,
+// parseval 10, energy 5, randomness 3.
+const std::vector<TableEntry>& table() {
+  using enum SkipReason;
+  static const std::vector<TableEntry> entries = {
+      {{"hermitian", false, false, 1, "height (and imaginary parts when given)", 7, false, {}},
+       check_hermitian},
+      {{"parseval", false, false, 1, "every frame's height", 8, false, {}},
+       check_parseval, false, true},
+      {{"energy", true, true, 1, "frame 0's height", 9, false, {free_scale}}, check_energy},
+      {{"spectrum", true, false, 1, "frame 0's height", 6, false, {}}, check_spectrum},
+      {{"moments", true, false, 1, "frame 0's height", 4, false, {free_scale, no_wave_motion}},
+       check_moments},
+      {{"dispersion", false, false, 1, "the heights of ≥ 3 frames at identifiable times", 3, false,
+        {too_few_frames, unidentifiable_times, above_nyquist}},
+       check_dispersion, true},
+      {{"direction", true, false, 2, "the heights of ≥ 2 frames at identifiable times", 5, false,
+        {too_few_frames, unidentifiable_times, too_few_wave_vectors}},
+       check_direction, true},
+      {{"randomness", true, false, 1, "the heights of ≥ 2 frames, or of one at t = 0", 10, false,
+        {unidentifiable_times, ambiguous_phase}},
+       check_randomness, true},
+      {{"statistics", true, false, 1, "frame 0's height; every frame's for hs_steady", 1, false,
+        {too_few_frames}},
+       check_statistics},
+      {{"derived", false, false, 1, "slopes, displacements or Jacobian of the first and last frames",
+        2, true, {no_field}},
+       check_derived},
+  };
+  return entries;
+}
+
+const TableEntry& entry(const std::string& name) {
+  for (const auto& e : table()) {
+    if (e.row.name == name) return e;
+  }
+  std::string valid;
+  for (const auto& e : table()) valid += fmt::format("{}{}", valid.empty() ? "" : ", ", e.row.name);
+  throw InvalidInput("unknown ocean check '" + name + "'; valid: " + valid);
+}
+
+bool selected(const std::vector<std::string>& checks, std::string_view name) {
+  return checks.empty() || std::find(checks.begin(), checks.end(), name) != checks.end();
+}
+
+// The checks named (all when empty) on one analysis, in the table's order; with a free scale the
+// fitted scale is reported first when `report_scale`.
+OceanCheckReport run_on(const Analysis& analysis, const std::vector<std::string>& checks,
+                        bool report_scale) {
+  OceanCheckReport report;
+  report.fitted_scale = analysis.scale();
+  for (const auto& e : table()) {
+    if (!selected(checks, e.row.name)) continue;
+    for (auto& result : e.run(analysis, report)) report.results.push_back(std::move(result));
+  }
+  if (analysis.options().free_scale && report_scale) {
+    CheckResult scale;
+    scale.check = std::string(kFittedScaleCheck);
+    scale.subject = analysis.subject();
+    scale.measured = analysis.scale();
+    scale.expected = 1;
+    scale.criterion = "reported, not judged (free scale)";
+    scale.passed = true;
+    scale.reason = fmt::format("the engine's spectrum is {:.4g}× the case's (Hs × {:.4g})",
+                               analysis.scale(), std::sqrt(analysis.scale()));
+    report.results.insert(report.results.begin(), scale);
+  }
+  return report;
+}
+
+}  // namespace
+
+const std::vector<OceanCheckRow>& ocean_check_table() {
+  static const std::vector<OceanCheckRow> rows = [] {
+    std::vector<OceanCheckRow> out;
+    for (const auto& e : table()) out.push_back(e.row);
+    return out;
+  }();
+  return rows;
+}
+
+std::vector<std::string_view> statistical_ocean_checks(bool free_scale, std::size_t frames) {
+  std::vector<std::string_view> out;
+  for (const auto& row : ocean_check_table()) {
+    if (!row.statistical || (row.needs_absolute_scale && free_scale)) continue;
+    if (frames < row.statistical_frames) continue;
+    out.push_back(row.name);
+  }
+  return out;
+}
+
+std::vector<std::string> ocean_check_names() {
+  std::vector<std::string> names;
+  for (const auto& row : ocean_check_table()) names.emplace_back(row.name);
+  return names;
+}
+
+std::vector<OceanCheckGroup> ocean_check_groups_longest_first() {
+  std::vector<const OceanCheckRow*> rows;
+  for (const auto& row : ocean_check_table()) rows.push_back(&row);
+  std::stable_sort(rows.begin(), rows.end(), [](const OceanCheckRow* x, const OceanCheckRow* y) {
+    return x->cost_rank < y->cost_rank;
+  });
+  std::vector<OceanCheckGroup> groups;
+  for (const auto* row : rows) groups.push_back({{std::string(row->name)}, row->ends_only});
+  return groups;
+}
+
+std::size_t ocean_check_position(const std::string& check) {
+  const std::string head = check.substr(0, check.find_first_of(".:"));
+  const auto& rows = ocean_check_table();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].name == head) return i;
+  }
+  return rows.size();
+}
+
+void require_judgeable_rounding(const OceanCase& ocean_case, double unit_roundoff,
+                                double mean_square_height) {
+  const auto mu = expected_periodogram(*ocean_case.directional_spectrum(), ocean_case.sampling());
+  const double floor = resolution_floor(unit_roundoff, mean_square_height, mu.size());
+  if (std::none_of(mu.begin(), mu.end(), [&](double m) { return m > 0 && m >= floor; })) {
+    throw_rounding_hides_every_wave(unit_roundoff, ocean_case);
+  }
+}
+
+OceanCheckReport run_ocean_checks(const OceanCase& ocean_case, const FrameSequence& frames,
+                                  const OceanCheckOptions& options,
+                                  const std::vector<std::string>& checks) {
+  for (const auto& name : checks) entry(name);
+  return run_on(Analysis(ocean_case, frames, options), checks, true);
+}
+
+std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case,
+                                                     const FrameSequence& frames,
+                                                     const FrameSequence& ends,
+                                                     const OceanCheckOptions& options,
+                                                     const std::vector<OceanCheckGroup>& groups,
+                                                     int threads,
+                                                     std::vector<double> travelling_power) {
+  for (const auto& group : groups) {
+    for (const auto& name : group.checks) entry(name);
+  }
+  // One analysis of the surface for every group, and one over the end frames that shares it
+  // when their frame 0 is the same field.
+  const Analysis analysis(ocean_case, frames, options, threads, std::move(travelling_power));
+  const bool same_first = &ends == &frames || ends.field(0, Field::height) == frames.field(0, Field::height);
+  std::optional<Analysis> ends_analysis;
+  const bool any_ends = std::any_of(groups.begin(), groups.end(), [](const OceanCheckGroup& g) { return g.ends_only; });
+  if (any_ends && &ends != &frames) {
+    if (same_first) {
+      ends_analysis.emplace(analysis, ends);
+    } else {
+      ends_analysis.emplace(ocean_case, ends, options);
+    }
+  }
+  // The wave series and per-wave fits the checks read, made first on every thread: a group that
+  // needed them would otherwise make them on one thread while the other groups wait for them.
+  auto any_group_reads = [&](auto reads) {
+    return std::any_of(groups.begin(), groups.end(), [&](const OceanCheckGroup& g) {
+      return std::any_of(table().begin(), table().end(), [&](const TableEntry& e) {
+        return reads(e) && selected(g.checks, e.row.name);
+      });
+    });
+  };
+  if (any_group_reads([](const TableEntry& e) { return e.reads_wave_fits; })) {
+    analysis.wave_fits();
+  } else if (options.analysis_backend == kAnalysisBackend &&
+             any_group_reads([](const TableEntry& e) { return e.reads_wave_series; })) {
+    analysis.wave_series();
+  }
+  std::vector<OceanCheckReport> parts(groups.size());
+  detail::run_tasks(groups.size(), threads, [&](std::size_t g) {
+    const Analysis& judged = groups[g].ends_only && ends_analysis ? *ends_analysis : analysis;
+    parts[g] = run_on(judged, groups[g].checks, g == 0);
+  });
+  return parts;
+}
+
+}  // namespace swell::validation

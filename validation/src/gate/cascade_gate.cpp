@@ -1,0 +1,190 @@
+// A cascade set judged (docs/gate.md §10): every cascade and the sum as surfaces of their own,
+// the set's checks across cascades, one family-wise α over all.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <optional>
+
+#include "gate/judge.hpp"
+#include "swell/reference/errors.hpp"
+#include "swell/reference/sampling_validity.hpp"
+#include "swell/validation/checks/cascade_checks.hpp"
+#include "swell/validation/gate/gate.hpp"
+
+namespace swell::validation {
+
+using namespace gate_path;
+
+namespace {
+
+// The surfaces of a set that have frames: each cascade's (an empty sequence when the case gives
+// none) and the sum's (null when none).
+GateReport judge_cascades(const CaseFile& case_file,
+                          const std::vector<reference::FrameSequence>& cascades,
+                          const std::vector<reference::FrameSequence>& cascade_ends,
+                          const reference::FrameSequence* sum,
+                          const reference::FrameSequence* sum_ends, const GateOptions& options,
+                          Clock::time_point start) {
+  options.validate();
+  const bool additive = case_file.relation == reference::CascadeRelation::additive;
+  std::vector<std::size_t> given;
+  for (std::size_t c = 0; c < cascades.size(); ++c) {
+    if (!cascades[c].frames.empty()) given.push_back(c);
+  }
+  std::optional<reference::OceanCase> summed;
+  if (sum) {
+    std::string why;
+    summed = case_file.summed_case(&why);
+    if (!summed) throw InvalidInput("[sum]: the cascades cannot be summed on one grid: " + why);
+  }
+  if (given.empty() && !sum) {
+    throw InvalidInput("the cascade set names no frames: give files and channels in each "
+                       "[[cascade]] table, or the summed surface's in [sum]");
+  }
+  // One family-wise α over every statistical check of every surface (Bonferroni): each
+  // cascade's ordinary ones and its band.missing, the set's energy and independence, and the
+  // sum's.
+  const bool free = case_file.scale == SpectrumScale::free;
+  int statistical = 0;
+  for (auto c : given) {
+    statistical += int(statistical_checks(case_file.scale, cascades[c].frames.size()).size());
+    if (additive) ++statistical;
+  }
+  const bool set_checks = given.size() >= 2;
+  if (set_checks && additive) statistical += free ? 1 : 2;
+  if (sum) statistical += int(statistical_checks(case_file.scale, sum->frames.size()).size()) + 1;
+  const double alpha_per_check = options.alpha / double(std::max(1, statistical));
+
+  GateReport report;
+  report.subject = fmt::format("{} set of {} cascades: {}", to_string(case_file.relation),
+                               case_file.cascades.size(), case_file.ocean.describe());
+  report.alpha = options.alpha;
+  report.alpha_per_check = alpha_per_check;
+  report.statistical_checks = statistical;
+  std::vector<std::string> samples;
+  auto add_surface = [&](const std::string& name, const CaseFile& surface,
+                         const reference::FrameSequence& frames,
+                         const reference::FrameSequence& ends) {
+    options.report_progress(fmt::format("judging {}…", name));
+    GateReport part = judge(surface, frames, ends, options, start, alpha_per_check);
+    for (auto& result : part.results) {
+      result.check = name + "." + result.check;
+      report.results.push_back(std::move(result));
+    }
+    for (auto& entry : part.skipped) {
+      entry.check = name + "." + entry.check;
+      report.skipped.push_back(std::move(entry));
+    }
+    if (report.frames == 0) {
+      report.frames = part.frames;
+      report.nx = part.nx;
+      report.ny = part.ny;
+      report.fields = part.fields;
+      report.fitted_scale = part.fitted_scale;
+    }
+    report.unit_roundoff = std::max(report.unit_roundoff, part.unit_roundoff);
+    samples.push_back(fmt::format("{} {}", name, part.samples));
+  };
+  std::vector<CascadeView> views;
+  std::vector<reference::OceanCase> oceans(cascades.size());
+  for (auto c : given) oceans[c] = case_file.cascade_case(c);
+  for (auto c : given) {
+    const std::string name = fmt::format("cascade{}", c);
+    add_surface(name, surface_case_file(case_file, oceans[c], case_file.cascades[c].input),
+                cascades[c], cascade_ends[c]);
+    views.push_back({int(c), &oceans[c], &cascades[c]});
+  }
+  if (!views.empty()) {
+    options.report_progress("judging the set…");
+    CascadeSetOptions set_options;
+    set_options.relation = case_file.relation;
+    set_options.alpha_per_check = alpha_per_check;
+    set_options.free_scale = free;
+    set_options.threads = options.resolved_threads();
+    for (auto& result : run_cascade_set_checks(views, case_file.members(), set_options)) {
+      report.results.push_back(std::move(result));
+    }
+  }
+  if (!set_checks && !given.empty() && case_file.cascades.size() >= 2) {
+    report.skipped.push_back(
+        {"cascades", SkipReason::too_few_cascades, "needs the frames of two or more cascades"});
+  }
+  if (sum) {
+    add_surface("sum", surface_case_file(case_file, *summed, case_file.sum), *sum, *sum_ends);
+    for (auto& result : check_summed_bands(*summed, *sum, alpha_per_check)) {
+      report.results.push_back(std::move(result));
+    }
+  }
+  // Each surface's results together: cascade 0's (its band checks included), cascade 1's, …,
+  // the set's, the sum's.
+  auto group = [&](const CheckResult& r) -> std::size_t {
+    const std::string head = r.check.substr(0, r.check.find('.'));
+    if (head == "cascades") return case_file.cascades.size();
+    if (head == "sum") return case_file.cascades.size() + 1;
+    return std::size_t(std::stoul(head.substr(std::string("cascade").size())));
+  };
+  std::stable_sort(report.results.begin(), report.results.end(),
+                   [&](const CheckResult& x, const CheckResult& y) { return group(x) < group(y); });
+  report.samples = fmt::format("{}", fmt::join(samples, ", "));
+  report.seconds = seconds_since(start);
+  return report;
+}
+
+}  // namespace
+
+GateReport run_cascade_gate(const CaseFile& case_file,
+                            const std::vector<reference::FrameSequence>& cascades,
+                            const reference::FrameSequence* sum, const GateOptions& options) {
+  if (cascades.size() != case_file.cascades.size()) {
+    throw InvalidInput(fmt::format("the set has {} cascades; frames were given for {}",
+                                   case_file.cascades.size(), cascades.size()));
+  }
+  return judge_cascades(case_file, cascades, cascades, sum, sum, options, Clock::now());
+}
+
+namespace gate_path {
+
+GateReport read_and_judge_cascades(const CaseFile& case_file, const GateOptions& options,
+                                   Clock::time_point start) {
+  const int threads = options.resolved_threads();
+  if (!options.input_pattern.empty()) {
+    throw InvalidInput("--input replaces a single surface's [input] files; a cascade set names "
+                       "each cascade's frames in its [[cascade]] table and the sum's in [sum]");
+  }
+  std::vector<reference::FrameSequence> all(case_file.cascades.size()),
+      ends(case_file.cascades.size());
+  auto read_surface = [&](const reference::OceanCase& ocean, const InputSpec& input,
+                          reference::FrameSequence& frames, reference::FrameSequence& end) {
+    const CaseFile surface = surface_case_file(case_file, ocean, input);
+    require_gate_memory(ocean, threads);
+    const auto sampling = ocean.sampling();
+    reference::require_valid_sampling(ocean, reference::kFloat64);
+    options.report_progress(fmt::format("reading {} frame{} on a {}…", ocean.frames,
+                                       ocean.frames == 1 ? "" : "s", sampling.describe()));
+    GateFrames read = read_gate_frames(surface, "", threads);
+    frames = std::move(read.all);
+    end = std::move(read.ends);
+  };
+  for (std::size_t c = 0; c < case_file.cascades.size(); ++c) {
+    if (case_file.cascades[c].input.files.empty()) continue;
+    read_surface(case_file.cascade_case(c), case_file.cascades[c].input, all[c], ends[c]);
+  }
+  reference::FrameSequence sum, sum_ends;
+  const bool has_sum = !case_file.sum.files.empty();
+  if (has_sum) {
+    std::string why;
+    const auto summed = case_file.summed_case(&why);
+    if (!summed) throw InvalidInput("[sum]: the cascades cannot be summed on one grid: " + why);
+    read_surface(*summed, case_file.sum, sum, sum_ends);
+  }
+  const double reading = seconds_since(start);
+  GateReport report = judge_cascades(case_file, all, ends, has_sum ? &sum : nullptr,
+                                     has_sum ? &sum_ends : nullptr, options, start);
+  report.case_path = case_file.origin.string();
+  report.read_seconds = reading;
+  return report;
+}
+
+}  // namespace gate_path
+}  // namespace swell::validation

@@ -1,0 +1,91 @@
+// One surface judged: the checks run on one analysis of its frames, at their share of α, and
+// their results merged into a report in the checks' order.
+#include "gate/judge.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "swell/reference/errors.hpp"
+#include "swell/validation/checks/ocean_check_table.hpp"
+#include "swell/validation/checks/ocean_checks.hpp"
+#include "swell/validation/stats/periodogram.hpp"
+
+namespace swell::validation::gate_path {
+
+using reference::Field;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::vector<std::string> statistical_checks(SpectrumScale scale, std::size_t frames) {
+  std::vector<std::string> out;
+  for (auto name : statistical_ocean_checks(scale == SpectrumScale::free, frames)) {
+    out.emplace_back(name);
+  }
+  return out;
+}
+
+GateReport judge(const CaseFile& case_file, const reference::FrameSequence& frames,
+                 const reference::FrameSequence& ends, const GateOptions& options,
+                 Clock::time_point start, double alpha_per_check,
+                 std::vector<double> travelling_power) {
+  options.validate();
+  const int threads = options.resolved_threads();
+  GateReport report;
+  report.subject = case_file.ocean.describe();
+  report.frames = int(frames.frames.size());
+  // A lattice's N samples are reported as N×1 (one row of points in n).
+  report.nx = frames.lattice ? int(frames.sampling().size()) : frames.grid.nx;
+  report.ny = frames.lattice ? 1 : frames.grid.ny;
+  report.samples = frames.lattice ? frames.sampling().describe()
+                                  : fmt::format("{}×{}", report.nx, report.ny);
+  for (Field field : reference::kAllFields) {
+    if (ends.has(field)) report.fields.push_back(reference::field_name(field));
+  }
+  const auto shared = statistical_checks(case_file.scale, frames.frames.size());
+  report.alpha = options.alpha;
+  report.statistical_checks = int(shared.size());
+  report.alpha_per_check = std::isnan(alpha_per_check) ? options.alpha / double(shared.size())
+                                                      : alpha_per_check;
+
+  OceanCheckOptions check_options;
+  check_options.alpha = report.alpha_per_check;
+  check_options.free_scale = case_file.scale == SpectrumScale::free;
+  // Parseval through FFTW's estimate planner, as every other analysis transform: a MEASURE plan
+  // is chosen by timing, so the measured rounding changed in its last digits from run to run,
+  // and its wisdom then changed the estimate plans of later gates in the process (FFTW uses
+  // any wisdom it has for an estimate plan). So the gate's report is the same on every run.
+  check_options.analysis_backend = kAnalysisBackend;
+  options.report_progress(fmt::format("judging {} frame{} of {}×{}…", report.frames,
+                                       report.frames == 1 ? "" : "s", report.nx, report.ny));
+
+  // Bad input (a grid that does not match, no height field) is thrown by the analysis.
+  auto parts = run_ocean_check_groups(case_file.ocean, frames, ends, check_options,
+                                      ocean_check_groups_longest_first(),
+                                      threads, std::move(travelling_power));
+  // Merged in the table's order, the fitted scale of a free-scale case first.
+  for (auto& part : parts) {
+    for (auto& result : part.results) report.results.push_back(std::move(result));
+    for (auto& entry : part.skipped) report.skipped.push_back(std::move(entry));
+  }
+  report.fitted_scale = parts.front().fitted_scale;
+  report.unit_roundoff = frames.unit_roundoff;
+  auto position = [](const std::string& check) {
+    return check == kFittedScaleCheck ? 0 : ocean_check_position(check) + 1;
+  };
+  std::stable_sort(report.results.begin(), report.results.end(),
+                   [&](const CheckResult& x, const CheckResult& y) {
+                     return position(x.check) < position(y.check);
+                   });
+  std::stable_sort(report.skipped.begin(), report.skipped.end(),
+                   [&](const Skipped& x, const Skipped& y) {
+                     return position(x.check) < position(y.check);
+                   });
+  report.seconds = seconds_since(start);
+  return report;
+}
+
+}  // namespace swell::validation::gate_path

@@ -1,0 +1,61 @@
+#pragma once
+// The steps of the gate's path that run_gate.cpp and cascade_gate.cpp share: the frames read,
+// the memory they need, and one surface judged.
+#include <chrono>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "swell/reference/fields.hpp"
+#include "swell/reference/ocean_case.hpp"
+#include "swell/validation/gate/options.hpp"
+#include "swell/validation/gate/report.hpp"
+#include "swell/validation/io/case_file.hpp"
+
+namespace swell::validation::gate_path {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start);
+
+// The statistical checks run_ocean_checks runs on `frames` frames of a case of this scale, each
+// at its share of α.
+std::vector<std::string> statistical_checks(SpectrumScale scale, std::size_t frames);
+
+// Throws InvalidInput (naming swell gate and the frames) when reading `ocean`'s frames on
+// `threads` threads needs more memory than the machine has; called before anything of the
+// grid's size is read.
+void require_gate_memory(const reference::OceanCase& ocean, int threads);
+
+// What the gate keeps of a surface's frames: the height of every frame (what every check but
+// `derived` uses), and every field of the first and the last frame (the two frames `derived`
+// compares). Every field of every frame is read and checked (size, finite values); the other
+// fields of the frames between are then dropped, which at 512² × 64 frames × 6 fields saves
+// 0.6 GB. `all` holds the heights with the other fields on its first and last frames; `ends` the
+// first and last frames alone, every field (both frames, in order; one when the case has one
+// frame).
+struct GateFrames {
+  reference::FrameSequence all, ends;
+};
+GateFrames read_gate_frames(const CaseFile& case_file, const std::string& pattern_override,
+                            int threads);
+
+// A cascade's (or the sum's) own case file: its case, its frames' input, the set's scale.
+CaseFile surface_case_file(const CaseFile& set, const reference::OceanCase& ocean,
+                           const InputSpec& input);
+
+// Judges one surface's frames (`ends`: its first and last frames with every field) at
+// `alpha_per_check` each (NaN: options.alpha shared by this surface's statistical checks alone;
+// a cascade set shares α over all its surfaces). `travelling_power`: τ(k) on the case's samples
+// when already evaluated (ocean_checks.hpp), else empty.
+GateReport judge(const CaseFile& case_file, const reference::FrameSequence& frames,
+                 const reference::FrameSequence& ends, const GateOptions& options,
+                 Clock::time_point start,
+                 double alpha_per_check = std::numeric_limits<double>::quiet_NaN(),
+                 std::vector<double> travelling_power = {});
+
+// Reads the frames of every cascade and of the sum that a cascade set names, then judges them
+// (cascade_gate.cpp).
+GateReport read_and_judge_cascades(const CaseFile& case_file, const GateOptions& options,
+                                   Clock::time_point start);
+
+}  // namespace swell::validation::gate_path

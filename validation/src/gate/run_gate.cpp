@@ -1,0 +1,62 @@
+// The gate's path for one surface (gate.hpp): options, case, memory and sampling rule before any
+// frame is read; then the frames, then the judgement.
+#include <fmt/format.h>
+
+#include <vector>
+
+#include "gate/judge.hpp"
+#include "swell/reference/errors.hpp"
+#include "swell/reference/sampling_validity.hpp"
+#include "swell/validation/gate/gate.hpp"
+#include "swell/validation/stats/periodogram.hpp"
+
+namespace swell::validation {
+
+using namespace gate_path;
+
+namespace {
+
+GateReport read_and_judge(const CaseFile& case_file, const GateOptions& options,
+                          Clock::time_point start) {
+  options.validate();
+  if (case_file.is_cascade_set()) return read_and_judge_cascades(case_file, options, start);
+  const int threads = options.resolved_threads();
+  const auto& ocean = case_file.ocean;
+  require_gate_memory(ocean, threads);
+  // The rest of the sampling rule before any frame is read (a case no frames can satisfy is
+  // refused as such, not as a missing file); the analysis applies it again in the frames'
+  // stored format. τ(k) over the samples is evaluated once, on every thread, for this rule and
+  // for the analysis.
+  const auto sampling = ocean.sampling();
+  std::vector<double> travelling =
+      expected_travelling_power(*ocean.directional_spectrum(), sampling, threads);
+  reference::require_valid_sampling(ocean, reference::kFloat64, 0, "", &travelling);
+  options.report_progress(fmt::format("reading {} frame{} on a {}…", ocean.frames,
+                                      ocean.frames == 1 ? "" : "s", sampling.describe()));
+  const GateFrames frames = read_gate_frames(case_file, options.input_pattern, threads);
+  const double reading = seconds_since(start);
+  GateReport report = judge(case_file, frames.all, frames.ends, options, start,
+                            std::numeric_limits<double>::quiet_NaN(), std::move(travelling));
+  report.case_path = case_file.origin.string();
+  report.read_seconds = reading;
+  return report;
+}
+
+}  // namespace
+
+GateReport run_gate(const std::filesystem::path& case_path, const GateOptions& options) {
+  const auto start = Clock::now();
+  options.validate();
+  return read_and_judge(read_case_file(case_path), options, start);
+}
+
+GateReport run_gate(const CaseFile& case_file, const GateOptions& options) {
+  return read_and_judge(case_file, options, Clock::now());
+}
+
+GateReport run_gate(const CaseFile& case_file, const reference::FrameSequence& frames,
+                    const GateOptions& options) {
+  return judge(case_file, frames, frames, options, Clock::now());
+}
+
+}  // namespace swell::validation

@@ -1,0 +1,902 @@
+// Case files (docs/case_files.md): TOML through toml++, checked key by key so that every
+// problem is reported with the file, the line, the section and the key.
+#include "swell/validation/io/case_file.hpp"
+
+#include "swell/reference/lattice.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+#include <vector>
+
+#include "swell/reference/errors.hpp"
+#include "swell/reference/model_factory.hpp"
+#include "swell/validation/io/frame_io.hpp"
+
+namespace swell::validation {
+namespace {
+
+namespace fs = std::filesystem;
+using reference::Field;
+using reference::ModelSpec;
+
+const std::vector<std::string> kSections = {"grid",      "time",      "physics", "spectrum",
+                                            "spreading", "synthesis", "input",   "sampling",
+                                            "cascades",  "cascade",   "sum"};
+// The parameters every frequency model takes, which a case holds once ([physics],
+// wind_dir_deg) instead of in [spectrum].
+const std::set<std::string> kCaseLevel = {"gravity", "depth", "wind_dir"};
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
+}
+
+std::string type_name(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a float";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::date: return "a date";
+    case toml::node_type::time: return "a time";
+    case toml::node_type::date_time: return "a date-time";
+    default: return "nothing";
+  }
+}
+
+// Everything that reads one file shares its name for the messages.
+class Reporter {
+ public:
+  explicit Reporter(std::string origin) : origin_(std::move(origin)) {}
+
+  // "<origin>:<line>: <what>" (the line when toml++ knows it).
+  [[noreturn]] void fail(const toml::source_region& where, const std::string& what) const {
+    if (where.begin.line > 0) {
+      throw InvalidInput(fmt::format("{}:{}: {}", origin_, where.begin.line, what));
+    }
+    fail(what);
+  }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InvalidInput(fmt::format("{}: {}", origin_, what));
+  }
+  const std::string& origin() const { return origin_; }
+
+ private:
+  std::string origin_;
+};
+
+// One [section]: typed accessors that name the section and key in every error, and a list of
+// the keys it accepts.
+class Section {
+ public:
+  Section(const Reporter& report, std::string name, const toml::table* table)
+      : report_(report), name_(std::move(name)), table_(table) {}
+
+  bool present() const { return table_ != nullptr; }
+  const toml::node* find(const std::string& key) const {
+    return table_ ? table_->get(key) : nullptr;
+  }
+  bool has(const std::string& key) const { return find(key) != nullptr; }
+
+  // Rejects every key not in `valid`.
+  void allow_only(const std::vector<std::string>& valid, const std::string& note = "") const {
+    if (!table_) return;
+    for (auto&& [key, node] : *table_) {
+      if (std::find(valid.begin(), valid.end(), std::string(key.str())) != valid.end()) continue;
+      report_.fail(key.source(), fmt::format("unknown key '{}' in [{}]{}; valid keys: {}",
+                                             key.str(), name_, note, join(valid)));
+    }
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    const toml::node* node = find(key);
+    report_.fail(node ? node->source() : (table_ ? table_->source() : toml::source_region{}),
+                 fmt::format("[{}] {}: {}", name_, key, what));
+  }
+  [[noreturn]] void wrong_type(const std::string& key, const std::string& expected) const {
+    fail(key, fmt::format("must be {} (got {})", expected, describe(*find(key))));
+  }
+
+  std::optional<double> number(const std::string& key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (auto v = node->as_floating_point()) return v->get();
+    if (auto v = node->as_integer()) return static_cast<double>(v->get());
+    wrong_type(key, "a number");
+  }
+  double number_or(const std::string& key, double fallback) const {
+    return number(key).value_or(fallback);
+  }
+  std::optional<std::int64_t> integer(const std::string& key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (auto v = node->as_integer()) return v->get();
+    wrong_type(key, "an integer");
+  }
+  std::optional<std::string> string(const std::string& key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (auto v = node->as_string()) return v->get();
+    wrong_type(key, "a string");
+  }
+  std::string required_string(const std::string& key, const std::string& meaning) const {
+    if (!has(key)) missing(key, meaning);
+    return *string(key);
+  }
+  [[noreturn]] void missing(const std::string& key, const std::string& meaning) const {
+    report_.fail(table_ ? table_->source() : toml::source_region{},
+                 fmt::format("[{}] needs '{}' ({})", name_, key, meaning));
+  }
+
+  // A pair [x, y] of numbers, or one number for both.
+  std::optional<std::array<double, 2>> number_pair(const std::string& key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (node->is_number()) {
+      const double v = *number(key);
+      return std::array<double, 2>{v, v};
+    }
+    const auto* array = node->as_array();
+    if (!array || array->size() != 2) wrong_type(key, "an array of 2 numbers [x, y]");
+    std::array<double, 2> out{};
+    for (std::size_t i = 0; i < 2; ++i) {
+      const toml::node& item = *array->get(i);
+      if (auto v = item.as_floating_point()) {
+        out[i] = v->get();
+      } else if (auto w = item.as_integer()) {
+        out[i] = static_cast<double>(w->get());
+      } else {
+        wrong_type(key, "an array of 2 numbers [x, y]");
+      }
+    }
+    return out;
+  }
+  std::optional<std::array<std::int64_t, 2>> integer_pair(const std::string& key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (auto v = node->as_integer()) return std::array<std::int64_t, 2>{v->get(), v->get()};
+    const auto* array = node->as_array();
+    if (!array || array->size() != 2) wrong_type(key, "an array of 2 integers [nx, ny]");
+    std::array<std::int64_t, 2> out{};
+    for (std::size_t i = 0; i < 2; ++i) {
+      const auto* v = array->get(i)->as_integer();
+      if (!v) wrong_type(key, "an array of 2 integers [nx, ny]");
+      out[i] = v->get();
+    }
+    return out;
+  }
+
+  const std::string& name() const { return name_; }
+
+ private:
+  static std::string describe(const toml::node& node) {
+    if (auto v = node.as_string()) return fmt::format("the string \"{}\"", v->get());
+    if (auto v = node.as_integer()) return fmt::format("the integer {}", v->get());
+    if (auto v = node.as_floating_point()) return fmt::format("the float {}", v->get());
+    if (auto v = node.as_boolean()) return v->get() ? "true" : "false";
+    return type_name(node);
+  }
+
+  const Reporter& report_;
+  std::string name_;
+  const toml::table* table_;
+};
+
+int checked_int(const Section& section, const std::string& key, std::int64_t value,
+                std::int64_t lowest) {
+  if (value < lowest || value > std::numeric_limits<int>::max()) {
+    section.fail(key, fmt::format("must be an integer in {}…{} (got {})", lowest,
+                                  std::numeric_limits<int>::max(), value));
+  }
+  return static_cast<int>(value);
+}
+
+// The model's own parameters (without gravity, depth and wind_dir, which the case holds once)
+// go to numbers or choices by their kind.
+void read_model_parameters(const Section& section, const std::string& model,
+                           const std::vector<std::string>& other_keys, ModelSpec& spec) {
+  const auto infos = reference::model_parameters(model);
+  std::vector<std::string> valid = other_keys;
+  for (const auto& info : infos) {
+    if (!kCaseLevel.count(info.name)) valid.push_back(info.name);
+  }
+  for (const auto& key : {"depth", "gravity"}) {
+    if (section.has(key)) {
+      section.fail(key, "belongs in [physics] (the case holds depth and gravity once for all "
+                        "models)");
+    }
+  }
+  if (section.has("wind_dir")) {
+    section.fail("wind_dir", "give the mean direction as wind_dir_deg (degrees, in [spreading], "
+                             "or in [spectrum] for phillips)");
+  }
+  section.allow_only(valid, " for model '" + model + "'");
+  for (const auto& info : infos) {
+    if (kCaseLevel.count(info.name) || !section.has(info.name)) continue;
+    const bool is_choice = info.unit.find('|') != std::string::npos;
+    if (is_choice) {
+      spec.choices[info.name] = *section.string(info.name);
+    } else {
+      spec.numbers[info.name] = *section.number(info.name);
+    }
+  }
+}
+
+// [input] value_range: [low, high] for every field given, or an inline table of them by field
+// ({ height = [-4.0, 4.0], disp_x = [-2.0, 2.0] }).
+std::map<Field, IntegerRange> read_value_ranges(const Section& input,
+                                                const std::map<Field, std::string>& channels) {
+  const std::string key = "value_range";
+  const toml::node* node = input.find(key);
+  if (!node) return {};
+  const std::string shape = "[low, high] (the values of pixel 0 and of the largest pixel), or a "
+                            "table of them by field such as { height = [-4.0, 4.0] }";
+  auto pair_of = [&](const toml::node& item, const std::string& where) {
+    const auto* array = item.as_array();
+    double values[2] = {0, 0};
+    bool numbers = array && array->size() == 2;
+    for (std::size_t i = 0; numbers && i < 2; ++i) {
+      if (auto v = array->get(i)->as_floating_point()) {
+        values[i] = v->get();
+      } else if (auto w = array->get(i)->as_integer()) {
+        values[i] = static_cast<double>(w->get());
+      } else {
+        numbers = false;
+      }
+    }
+    if (!numbers) input.fail(key, where + "must be " + shape);
+    if (!(std::isfinite(values[0]) && std::isfinite(values[1]) && values[0] < values[1])) {
+      input.fail(key, fmt::format("{}[{:g}, {:g}] must be finite with low < high", where,
+                                  values[0], values[1]));
+    }
+    return IntegerRange{values[0], values[1]};
+  };
+  std::map<Field, IntegerRange> out;
+  if (const auto* table = node->as_table()) {
+    for (auto&& [name, item] : *table) {
+      const std::string field_name(name.str());
+      Field field{};
+      try {
+        field = reference::field_from_name(field_name);
+      } catch (const std::exception&) {
+        std::vector<std::string> names;
+        for (Field f : reference::kAllFields) names.push_back(reference::field_name(f));
+        input.fail(key, fmt::format("unknown field '{}'; fields: {}", field_name, join(names)));
+      }
+      if (!channels.count(field)) {
+        input.fail(key, fmt::format("gives a range for {}, which [input] does not provide",
+                                    field_name));
+      }
+      out[field] = pair_of(item, field_name + ": ");
+    }
+    if (out.empty()) input.fail(key, "is an empty table; give a range per field, or [low, high]");
+    return out;
+  }
+  const IntegerRange range = pair_of(*node, "");
+  for (const auto& [field, channel] : channels) out[field] = range;
+  return out;
+}
+
+std::string model_name(const Section& section, const std::vector<std::string>& valid,
+                       const std::string& kind) {
+  const std::string model = *section.string("model");
+  if (std::find(valid.begin(), valid.end(), model) == valid.end()) {
+    section.fail("model", reference::unknown_model_message(kind == "spreading"
+                                                               ? reference::ModelKind::spreading
+                                                               : reference::ModelKind::spectrum,
+                                                           model));
+  }
+  return model;
+}
+
+// ------------------------------------------------------------------ writing
+
+// Shortest text that reads back to the same double, always a TOML float.
+std::string toml_number(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  std::string text(buffer, result.ptr);
+  if (text.find_first_of(".e") == std::string::npos) text += ".0";
+  return text;
+}
+
+std::string toml_string(const std::string& value) {
+  std::string out = "\"";
+  for (const char c : value) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+          out += fmt::format("\\u{:04X}", static_cast<unsigned>(static_cast<unsigned char>(c)));
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string toml_key(const std::string& key) {
+  const bool bare = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+           c == '_' || c == '-';
+  });
+  return bare ? key : toml_string(key);
+}
+
+void write_parameters(std::string& out, const ModelSpec& spec) {
+  for (const auto& [name, value] : spec.numbers) {
+    out += fmt::format("{} = {}\n", toml_key(name), toml_number(value));
+  }
+  for (const auto& [name, value] : spec.choices) {
+    out += fmt::format("{} = {}\n", toml_key(name), toml_string(value));
+  }
+}
+
+// The keys of an input section (`valid`: files, raw_type, value_range, the field names, and
+// whatever else the section's reader takes itself).
+void read_input_keys(const Reporter& report, const Section& input,
+                     const std::vector<std::string>& valid, InputSpec& out,
+                     bool frames_optional = false) {
+  {
+    input.allow_only(valid);
+    if (auto files = input.string("files")) {
+      if (files->empty()) input.fail("files", "must not be empty");
+      try {
+        (void)frame_file_name(*files, 0);
+      } catch (const InvalidInput& e) {
+        input.fail("files", e.what());
+      }
+      std::string ext = fs::path(*files).extension().string();
+      for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+      if (ext != ".exr" && ext != ".tif" && ext != ".tiff" && ext != ".png" && ext != ".npy" &&
+          ext != ".raw") {
+        input.fail("files", fmt::format("extension '{}' is not one swell reads (.exr, .tif, .tiff, "
+                                        ".png, .npy, .raw)",
+                                        ext));
+      }
+      out.files = *files;
+    }
+    std::map<std::string, Field> used;
+    for (Field field : reference::kAllFields) {
+      const std::string key = reference::field_name(field);
+      auto channel = input.string(key);
+      if (!channel) continue;
+      if (channel->empty()) input.fail(key, "must name a channel (or file suffix), not \"\"");
+      if (auto [it, fresh] = used.emplace(*channel, field); !fresh) {
+        input.fail(key, fmt::format("channel \"{}\" is already given to {}", *channel,
+                                    reference::field_name(it->second)));
+      }
+      out.channels[field] = *channel;
+    }
+    if (auto raw_type = input.string("raw_type")) {
+      if (*raw_type != "float32" && *raw_type != "float64") {
+        input.fail("raw_type", "must be \"float32\" or \"float64\" (got \"" + *raw_type + "\")");
+      }
+      out.raw_type = *raw_type;
+    }
+    if (input.present() && out.channels.empty() && !(frames_optional && out.files.empty())) {
+      std::vector<std::string> fields;
+      for (Field field : reference::kAllFields) fields.push_back(reference::field_name(field));
+      report.fail(fmt::format("[{}] names no field; give at least one of {} with its channel "
+                              "(EXR/TIFF/PNG) or file suffix (.npy/.raw)",
+                              input.name(), join(fields)));
+    }
+    out.value_ranges = read_value_ranges(input, out.channels);
+  }
+}
+
+std::vector<std::string> input_keys() {
+  std::vector<std::string> valid = {"files", "raw_type", "value_range"};
+  for (Field field : reference::kAllFields) valid.push_back(reference::field_name(field));
+  return valid;
+}
+
+// [input] or [sum]: the frames' pattern, one channel (or file suffix) per field provided.
+InputSpec read_input(const Reporter& report, const Section& input) {
+  InputSpec out;
+  read_input_keys(report, input, input_keys(), out);
+  return out;
+}
+
+// [cascades] relation, crossover and the [[cascade]] tables (docs/conventions.md §2.2): each its grid
+// (n, length), its band [lo, hi) in rad/m, and its frames as in [input]; [sum] the summed
+// surface's frames. `ocean` holds what the cascades share; it takes cascade 0's grid.
+void read_cascades(const Reporter& report, const toml::table& document, CaseFile& out) {
+  const auto* settings = document.get_as<toml::table>("cascades");
+  const auto* list = document.get_as<toml::array>("cascade");
+  const Section sum(report, "sum", document.get_as<toml::table>("sum"));
+  if (!settings && !list) {
+    if (sum.present()) {
+      report.fail("[sum] holds the summed surface of a cascade set; this case has no "
+                  "[cascades] and [[cascade]] tables");
+    }
+    return;
+  }
+  const Section cascades(report, "cascades", settings);
+  if (!settings) report.fail("[[cascade]] tables need a [cascades] section (relation = \"additive\" | \"nested\")");
+  if (!list || list->empty()) {
+    report.fail("[cascades] needs at least one [[cascade]] table (n, length, band, files and "
+                "channels)");
+  }
+  cascades.allow_only({"relation", "crossover"});
+  const std::string relation = cascades.string("relation").value_or("additive");
+  if (relation == "additive") {
+    out.relation = reference::CascadeRelation::additive;
+  } else if (relation == "nested") {
+    out.relation = reference::CascadeRelation::nested;
+  } else {
+    cascades.fail("relation", fmt::format("must be \"additive\" or \"nested\" (got \"{}\")",
+                                          relation));
+  }
+  const bool additive = out.relation == reference::CascadeRelation::additive;
+  const double crossover = cascades.number_or("crossover", 1);
+  if (!(std::isfinite(crossover) && crossover >= 1)) {
+    cascades.fail("crossover", fmt::format("must be a ratio ≥ 1 (1: hard cuts; got {:g})",
+                                           crossover));
+  }
+  if (!additive && cascades.has("crossover")) {
+    cascades.fail("crossover", "weights the bands of an additive set; nested bands are not added");
+  }
+  auto keys = input_keys();
+  for (const char* key : {"n", "length", "band"}) keys.push_back(key);
+  for (std::size_t c = 0; c < list->size(); ++c) {
+    const Section table(report, fmt::format("cascade {}", c), list->get(c)->as_table());
+    CascadeInput cascade;
+    cascade.index = int(c);
+    // A cascade's frames are optional: the gate may judge the summed surface alone.
+    read_input_keys(report, table, keys, cascade.input, true);
+    const auto n = table.integer_pair("n");
+    if (!n) table.missing("n", "samples [nx, ny]");
+    const auto length = table.number_pair("length");
+    if (!length) table.missing("length", "patch size [lx, ly] in m");
+    auto& grid = cascade.grid;
+    grid.nx = checked_int(table, "n", (*n)[0], 1);
+    grid.ny = checked_int(table, "n", (*n)[1], 1);
+    grid.lx = (*length)[0];
+    grid.ly = (*length)[1];
+    try {
+      (void)reference::Grid::create(grid.nx, grid.ny, grid.lx, grid.ly);
+    } catch (const InvalidInput& e) {
+      table.fail("n", e.what());
+    }
+    if (const auto band = table.number_pair("band")) {
+      if (!table.find("band")->is_array()) table.wrong_type("band", "an array [lo, hi] of |k| in rad/m");
+      cascade.band = reference::BandWeight{(*band)[0], (*band)[1], crossover};
+      try {
+        cascade.band.validate(fmt::format("cascade {}", c));
+      } catch (const InvalidInput& e) {
+        table.fail("band", e.what());
+      }
+    } else if (additive && list->size() > 1) {
+      table.missing("band", "[lo, hi): the |k| in rad/m this cascade carries");
+    }
+    if (!cascade.input.channels.empty() && cascade.input.files.empty()) {
+      table.missing("files", "the pattern of this cascade's frames");
+    }
+    out.cascades.push_back(std::move(cascade));
+  }
+  if (!additive) {
+    for (const auto& c : out.cascades) {
+      const auto& first = out.cascades.front().grid;
+      if (c.grid.lx != first.lx || c.grid.ly != first.ly) {
+        report.fail(fmt::format(
+            "[cascade {}] length: nested bands are two samplings of one patch (the low band's "
+            "waves are the broad band's at the same k); its {:g}×{:g} m differs from cascade "
+            "0's {:g}×{:g} m",
+            c.index, c.grid.lx, c.grid.ly, first.lx, first.ly));
+      }
+    }
+  }
+  out.sum = read_input(report, sum);
+  if (sum.present()) {
+    if (!additive) sum.fail("files", "nested bands are not added: a nested set has no summed surface");
+    if (out.sum.files.empty()) sum.missing("files", "the pattern of the summed surface's frames");
+    reference::Grid fine;
+    std::string why;
+    if (!reference::summed_grid(out.members(), fine, &why)) {
+      sum.fail("files", "the cascades cannot be summed on one grid: " + why);
+    }
+  }
+}
+
+}  // namespace
+
+CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
+  const Reporter report(origin.string());
+  toml::table document;
+  try {
+    document = toml::parse(text, origin.string());
+  } catch (const toml::parse_error& e) {
+    report.fail(e.source(), fmt::format("not valid TOML: {}", e.description()));
+  }
+
+  // Sections: each a table, none unknown.
+  for (auto&& [key, node] : document) {
+    const std::string name(key.str());
+    if (std::find(kSections.begin(), kSections.end(), name) == kSections.end()) {
+      report.fail(key.source(), fmt::format("unknown section [{}]; valid sections: {}", name,
+                                            join(kSections)));
+    }
+    if (name == "cascade") {
+      if (!node.is_array_of_tables()) {
+        report.fail(key.source(), fmt::format("'cascade' must be an array of tables [[cascade]], "
+                                              "one per cascade, not {}",
+                                              type_name(node)));
+      }
+      continue;
+    }
+    if (!node.is_table()) {
+      report.fail(key.source(), fmt::format("'{}' must be a section [{}] (a table), not {}", name,
+                                            name, type_name(node)));
+    }
+  }
+  auto section = [&](const std::string& name) {
+    return Section(report, name, document.get_as<toml::table>(name));
+  };
+
+  CaseFile out;
+  out.origin = origin;
+  out.directory = origin.parent_path();
+  auto& ocean = out.ocean;
+
+  // [sampling] kind = "grid" (the default: [grid] n and length) or "lattice" (points and
+  // generator here, [grid] length only; docs/conventions.md §2.1).
+  const Section sampling = section("sampling");
+  sampling.allow_only({"kind", "points", "generator"});
+  const std::string kind = sampling.string("kind").value_or("grid");
+  if (kind != "grid" && kind != "lattice") {
+    sampling.fail("kind", fmt::format("must be \"grid\" or \"lattice\" (got \"{}\")", kind));
+  }
+  const bool lattice = kind == "lattice";
+  if (!lattice && (sampling.has("points") || sampling.has("generator"))) {
+    sampling.fail(sampling.has("points") ? "points" : "generator",
+                  "belongs to kind = \"lattice\" (a grid's samples are [grid] n)");
+  }
+
+  // [grid] n, length: required (length only for a lattice); a cascade set gives a grid per
+  // [[cascade]] instead.
+  const Section grid = section("grid");
+  const bool cascade_set = document.contains("cascades") || document.contains("cascade");
+  if (cascade_set) {
+    if (grid.present()) {
+      report.fail("[grid]: a cascade set gives each cascade's grid (n, length) in its "
+                  "[[cascade]] table; remove [grid]");
+    }
+    if (document.contains("input")) {
+      report.fail("[input]: a cascade set gives each cascade's frames (files, channels) in its "
+                  "[[cascade]] table, and the summed surface's in [sum]; remove [input]");
+    }
+    if (lattice) sampling.fail("kind", "cascades are grids; a lattice samples one patch");
+  } else if (!grid.present()) {
+    report.fail(lattice ? "missing section [grid] (length = [lx, ly] in m: the lattice's patch)"
+                        : "missing section [grid] (n = [nx, ny], length = [lx, ly] in m)");
+  }
+  grid.allow_only({"n", "length"});
+  const auto length = cascade_set ? std::optional<std::array<double, 2>>{{1.0, 1.0}}
+                                  : grid.number_pair("length");
+  if (!length) grid.missing("length", "patch size [lx, ly] in m");
+  if (cascade_set) {
+    // cascade 0's grid, once [[cascade]] is read
+  } else if (lattice) {
+    if (grid.has("n")) {
+      grid.fail("n", "a lattice case has no grid samples: its points are [sampling] points");
+    }
+    const auto points = sampling.integer("points");
+    if (!points) sampling.missing("points", "N, the number of lattice points");
+    const auto generator = sampling.integer_pair("generator");
+    if (!generator || !sampling.find("generator")->is_array()) {
+      if (!sampling.has("generator")) sampling.missing("generator", "[g0, g1], the lattice's generator");
+      sampling.wrong_type("generator", "an array of 2 integers [g0, g1]");
+    }
+    try {
+      ocean.set_lattice(std::make_shared<const reference::RankOneLattice>(
+          reference::RankOneLattice::create(*points, {(*generator)[0], (*generator)[1]},
+                                            {(*length)[0], (*length)[1]})));
+    } catch (const InvalidInput& e) {
+      sampling.fail("points", fmt::format("points = {}, generator = [{}, {}], length = [{:g}, "
+                                          "{:g}]: {}",
+                                          *points, (*generator)[0], (*generator)[1], (*length)[0],
+                                          (*length)[1], e.what()));
+    }
+  } else {
+    const auto n = grid.integer_pair("n");
+    if (!n) grid.missing("n", "samples [nx, ny]");
+    ocean.grid.nx = checked_int(grid, "n", (*n)[0], 1);
+    ocean.grid.ny = checked_int(grid, "n", (*n)[1], 1);
+    ocean.grid.lx = (*length)[0];
+    ocean.grid.ly = (*length)[1];
+  }
+
+  // [time]
+  const Section time = section("time");
+  time.allow_only({"t0", "dt", "frames"});
+  ocean.t0 = time.number_or("t0", 0);
+  ocean.dt = time.number_or("dt", 0);
+  if (auto frames = time.integer("frames")) ocean.frames = checked_int(time, "frames", *frames, 1);
+
+  // [physics]: depth is metres, or "inf" (a TOML inf works too).
+  const Section physics = section("physics");
+  physics.allow_only({"gravity", "depth"});
+  ocean.gravity = physics.number_or("gravity", reference::kStandardGravity);
+  if (const toml::node* depth = physics.find("depth")) {
+    if (auto s = depth->as_string()) {
+      if (s->get() != "inf") physics.fail("depth", "must be a number of metres or \"inf\" (got \"" + s->get() + "\")");
+      ocean.depth = reference::kInfiniteDepth;
+    } else if (depth->is_number()) {
+      ocean.depth = *physics.number("depth");
+    } else {
+      physics.wrong_type("depth", "a number of metres or \"inf\"");
+    }
+  }
+
+  // [spectrum]: model (required), scale, the model's parameters; phillips may carry the wind
+  // direction here, having no [spreading] model.
+  const Section spectrum = section("spectrum");
+  if (!spectrum.present()) {
+    report.fail("missing section [spectrum] (model = \"jonswap\" | …, with its parameters)");
+  }
+  if (!spectrum.has("model")) {
+    spectrum.missing("model", "one of " + join(reference::frequency_model_names()));
+  }
+  ocean.spectrum.model = model_name(spectrum, reference::frequency_model_names(), "spectrum");
+  read_model_parameters(spectrum, ocean.spectrum.model, {"model", "scale", "wind_dir_deg"},
+                        ocean.spectrum);
+  if (auto scale = spectrum.string("scale")) {
+    if (*scale == "absolute") {
+      out.scale = SpectrumScale::absolute;
+    } else if (*scale == "free") {
+      out.scale = SpectrumScale::free;
+    } else {
+      spectrum.fail("scale", "must be \"absolute\" or \"free\" (got \"" + *scale + "\")");
+    }
+  }
+
+  // [spreading]: model (absent for phillips), its parameters, wind_dir_deg.
+  const Section spreading = section("spreading");
+  if (spreading.has("model")) {
+    ocean.spreading.model = model_name(spreading, reference::spreading_model_names(), "spreading");
+    read_model_parameters(spreading, ocean.spreading.model, {"model", "wind_dir_deg"},
+                          ocean.spreading);
+  } else {
+    spreading.allow_only({"model", "wind_dir_deg"},
+                         " (spreading parameters need a model = \"cos2s\" | …)");
+  }
+  if (spectrum.has("wind_dir_deg") && spreading.has("wind_dir_deg")) {
+    spreading.fail("wind_dir_deg", "given in both [spectrum] and [spreading]; give it once");
+  }
+  ocean.wind_dir_deg = spectrum.has("wind_dir_deg") ? *spectrum.number("wind_dir_deg")
+                                                    : spreading.number_or("wind_dir_deg", 0);
+
+  // [synthesis]
+  const Section synthesis = section("synthesis");
+  synthesis.allow_only({"choppiness", "loop_period", "seed"});
+  ocean.choppiness = synthesis.number_or("choppiness", 1);
+  ocean.loop_period = synthesis.number_or("loop_period", 0);
+  if (const toml::node* seed = synthesis.find("seed")) {
+    // TOML integers stop at 2⁶³ − 1; a larger uint64 seed is written as a decimal string.
+    if (auto v = seed->as_integer()) {
+      if (v->get() < 0) synthesis.fail("seed", fmt::format("must be ≥ 0 (got {})", v->get()));
+      ocean.seed = static_cast<std::uint64_t>(v->get());
+    } else if (auto s = seed->as_string()) {
+      const std::string& digits = s->get();
+      const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), ocean.seed);
+      if (digits.empty() || result.ec != std::errc() || result.ptr != digits.data() + digits.size()) {
+        synthesis.fail("seed", "must be an integer in 0…2⁶⁴−1 (got \"" + digits + "\")");
+      }
+    } else {
+      synthesis.wrong_type("seed", "an integer ≥ 0");
+    }
+  }
+
+  // [input]: the frames' pattern, one channel (or file suffix) per field provided.
+  out.input = read_input(report, section("input"));
+
+  read_cascades(report, document, out);
+  if (out.is_cascade_set()) ocean.grid = out.cascades.front().grid;
+
+  try {
+    ocean.validate();
+    for (std::size_t c = 0; c < out.cascades.size(); ++c) {
+      try {
+        out.cascade_case(c).validate();
+      } catch (const InvalidInput& e) {
+        throw InvalidInput(fmt::format("[cascade {}]: {}", c, e.what()));
+      }
+    }
+    if (out.is_cascade_set() && out.relation == reference::CascadeRelation::additive) {
+      reference::require_bands_share_out(ocean, out.members());
+    }
+  } catch (const InvalidInput& e) {
+    report.fail(e.what());
+  } catch (const NumericalError& e) {
+    // validate() builds the spectrum and the spreading. The model factory already turns a
+    // spectrum outside any sea (tp = 1e60 s, found by validation/fuzz/case_file_fuzzer) into
+    // InvalidInput; any other quadrature that fails on the case's values is bad input too.
+    report.fail(fmt::format("the case's spectrum cannot be evaluated with these parameters: {}",
+                            e.what()));
+  }
+  return out;
+}
+
+reference::OceanCase CaseFile::cascade_case(std::size_t c) const {
+  const auto& cascade = cascades.at(c);
+  reference::OceanCase out = ocean;
+  out.members.clear();
+  out.grid = cascade.grid;
+  out.band = cascade.band;
+  out.cascade = relation == reference::CascadeRelation::additive ? cascade.index : 0;
+  return out;
+}
+
+std::vector<reference::CascadeMember> CaseFile::members() const {
+  std::vector<reference::CascadeMember> out;
+  for (std::size_t c = 0; c < cascades.size(); ++c) {
+    const auto sea = cascade_case(c);
+    out.push_back({sea.cascade, sea.grid, sea.band});
+  }
+  return out;
+}
+
+std::optional<reference::OceanCase> CaseFile::summed_case(std::string* why) const {
+  if (!is_cascade_set() || relation != reference::CascadeRelation::additive) {
+    if (why) *why = is_cascade_set() ? "nested bands are not added" : "not a cascade set";
+    return std::nullopt;
+  }
+  reference::Grid fine;
+  const auto list = members();
+  if (!reference::summed_grid(list, fine, why)) return std::nullopt;
+  reference::OceanCase out = ocean;
+  out.grid = fine;
+  out.band = {};
+  out.cascade = 0;
+  out.members = list;
+  return out;
+}
+
+void require_single_grid(const CaseFile& case_file, const std::string& command) {
+  if (!case_file.is_cascade_set()) return;
+  throw InvalidInput(fmt::format("{} takes a single-grid case; this one is a set of {} cascades "
+                                 "(swell synth makes them and swell gate judges them)",
+                                 command, case_file.cascades.size()));
+}
+
+CaseFile read_case_file(const fs::path& path) {
+  std::error_code error;
+  if (!fs::exists(path, error)) throw InvalidInput(path.string() + ": no such case file");
+  if (fs::is_directory(path, error)) {
+    throw InvalidInput(path.string() + ": is a directory, not a case file");
+  }
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InvalidInput(path.string() + ": cannot open the case file for reading");
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) throw InvalidInput(path.string() + ": read error");
+  return parse_case_toml(text.str(), path);
+}
+
+// The keys of an input section under `header` ("[input]", "[sum]"; "" inside a [[cascade]]
+// table already open), nothing when it names no frames.
+void write_input(std::string& out, const std::string& header, const InputSpec& input) {
+  if (input.files.empty() && input.channels.empty()) return;
+  if (!header.empty()) out += "\n" + header + "\n";
+
+    if (!input.files.empty()) out += fmt::format("files = {}\n", toml_string(input.files));
+    for (const auto& [field, channel] : input.channels) {
+      out += fmt::format("{} = {}\n", reference::field_name(field), toml_string(channel));
+    }
+    if (input.raw_type != "float32") out += fmt::format("raw_type = {}\n", toml_string(input.raw_type));
+    if (!input.value_ranges.empty()) {
+      const IntegerRange first = input.value_ranges.begin()->second;
+      bool one_for_all = input.value_ranges.size() == input.channels.size();
+      for (const auto& [field, range] : input.value_ranges) one_for_all = one_for_all && range == first;
+      auto pair = [](const IntegerRange& r) {
+        return fmt::format("[{}, {}]", toml_number(r.low), toml_number(r.high));
+      };
+      if (one_for_all) {
+        out += fmt::format("value_range = {}\n", pair(first));
+      } else {
+        std::string table;
+        for (const auto& [field, range] : input.value_ranges) {
+          table += fmt::format("{}{} = {}", table.empty() ? "" : ", ", reference::field_name(field),
+                               pair(range));
+        }
+        out += fmt::format("value_range = {{ {} }}\n", table);
+      }
+    }
+}
+
+std::string case_toml(const CaseFile& case_file) {
+  const auto& c = case_file.ocean;
+  std::string out = "# swell case file (docs/case_files.md)\n";
+  std::string summary = c.describe();
+  std::replace(summary.begin(), summary.end(), '\n', ' ');  // stays one comment line
+  out += fmt::format("# {}\n\n", summary);
+  if (case_file.is_cascade_set()) {
+    // [[cascade]] tables below
+  } else if (c.is_lattice()) {
+    const auto& g = c.lattice->generator();
+    out += fmt::format("[grid]\nlength = [{}, {}]\n\n", toml_number(c.grid.lx),
+                       toml_number(c.grid.ly));
+    out += fmt::format("[sampling]\nkind = \"lattice\"\npoints = {}\ngenerator = [{}, {}]\n\n",
+                       c.lattice->points(), g[0], g[1]);
+  } else {
+    out += fmt::format("[grid]\nn = [{}, {}]\nlength = [{}, {}]\n\n", c.grid.nx, c.grid.ny,
+                       toml_number(c.grid.lx), toml_number(c.grid.ly));
+  }
+  out += fmt::format("[time]\nt0 = {}\ndt = {}\nframes = {}\n\n", toml_number(c.t0),
+                     toml_number(c.dt), c.frames);
+  out += fmt::format("[physics]\ngravity = {}\ndepth = {}\n\n", toml_number(c.gravity),
+                     std::isinf(c.depth) && c.depth > 0 ? "\"inf\"" : toml_number(c.depth));
+
+  const bool direction_in_spectrum = c.spreading.model.empty();
+  out += fmt::format("[spectrum]\nmodel = {}\nscale = \"{}\"\n", toml_string(c.spectrum.model),
+                     case_file.scale == SpectrumScale::free ? "free" : "absolute");
+  write_parameters(out, c.spectrum);
+  if (direction_in_spectrum) out += fmt::format("wind_dir_deg = {}\n", toml_number(c.wind_dir_deg));
+  out += "\n";
+  if (!direction_in_spectrum) {
+    out += fmt::format("[spreading]\nmodel = {}\n", toml_string(c.spreading.model));
+    write_parameters(out, c.spreading);
+    out += fmt::format("wind_dir_deg = {}\n\n", toml_number(c.wind_dir_deg));
+  }
+
+  const std::string seed =
+      c.seed > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())
+          ? fmt::format("\"{}\"", c.seed)
+          : fmt::format("{}", c.seed);
+  out += fmt::format("[synthesis]\nchoppiness = {}\nloop_period = {}\nseed = {}\n",
+                     toml_number(c.choppiness), toml_number(c.loop_period), seed);
+
+  write_input(out, "[input]", case_file.input);
+  if (case_file.is_cascade_set()) {
+    out += fmt::format("\n[cascades]\nrelation = \"{}\"\n", to_string(case_file.relation));
+    const double crossover = case_file.cascades.front().band.crossover;
+    if (crossover != 1) out += fmt::format("crossover = {}\n", toml_number(crossover));
+    for (const auto& cascade : case_file.cascades) {
+      out += fmt::format("\n[[cascade]]\nn = [{}, {}]\nlength = [{}, {}]\n", cascade.grid.nx,
+                         cascade.grid.ny, toml_number(cascade.grid.lx),
+                         toml_number(cascade.grid.ly));
+      if (!cascade.band.everywhere()) {
+        out += fmt::format("band = [{}, {}]\n", toml_number(cascade.band.lo),
+                           std::isinf(cascade.band.hi) ? std::string("inf")
+                                                       : toml_number(cascade.band.hi));
+      }
+      write_input(out, "", cascade.input);
+    }
+    write_input(out, "[sum]", case_file.sum);
+  }
+  return out;
+}
+
+void write_case_file(const fs::path& path, const CaseFile& case_file) {
+  const std::string text = case_toml(case_file);
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  if (!file) throw InvalidInput(path.string() + ": cannot open for writing");
+  file << text;
+  file.close();
+  if (!file) throw InvalidInput(path.string() + ": write failed");
+}
+
+}  // namespace swell::validation

@@ -1,0 +1,318 @@
+// The catalogue of engine bugs: every buggy engine of the test engine fails the gate,
+// and the check that fails names the bug in its reason. Right engines pass: over 200 seeds the
+// gate's family-wise false-alarm rate is within the binomial bound of its α (label
+// "calibration").
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <boost/math/distributions/binomial.hpp>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <set>
+
+#include "swell/impls/synthesizer.hpp"
+#include "swell/validation/io/case_file.hpp"
+#include "swell/validation/io/frame_io.hpp"
+#include "swell/validation/gate/gate.hpp"
+#include "swell/validation/checks/ocean_checks.hpp"
+#include "gate/gate_cases.hpp"
+#include "test_engine.hpp"
+
+namespace {
+
+using swell::reference::Grid;
+using swell::reference::OceanCase;
+using swell::test::EngineBug;
+using swell::validation::CaseFile;
+using swell::validation::GateOptions;
+using swell::validation::GateReport;
+
+using swell::test::as_case_file;
+using swell::test::catalogue_case;
+using swell::test::shallow_case;
+
+struct CatalogueEntry {
+  EngineBug bug;
+  std::string check;   // the result that fails and names the bug
+  std::string naming;  // words of its reason that name it
+  bool shallow = false;
+  bool complex_output = false;  // the engine hands over its complex fields
+};
+
+std::string describe(const GateReport& report) {
+  std::string out;
+  for (const auto& r : report.results) {
+    if (!r.passed) out += "\n  FAIL " + r.check + ": " + r.reason;
+  }
+  return out;
+}
+
+class Catalogue : public ::testing::TestWithParam<CatalogueEntry> {};
+
+TEST_P(Catalogue, TheGateFailsTheBuggyEngineAndTheFailingCheckNamesTheBug) {
+  const auto& entry = GetParam();
+  const OceanCase c = entry.shallow ? shallow_case() : catalogue_case();
+  swell::test::EngineOptions options;
+  options.keep_imaginary = entry.complex_output;
+  const auto report = swell::validation::run_gate(
+      as_case_file(c), swell::test::render_surface(c, entry.bug, options), GateOptions{});
+  EXPECT_FALSE(report.passed()) << swell::test::to_string(entry.bug);
+  bool found = false;
+  for (const auto& r : report.results) {
+    if (r.check != entry.check) continue;
+    found = true;
+    EXPECT_FALSE(r.passed) << swell::test::to_string(entry.bug) << " passed " << r.check << ": "
+                           << r.reason << describe(report);
+    EXPECT_NE(r.reason.find(entry.naming), std::string::npos)
+        << swell::test::to_string(entry.bug) << ": '" << entry.naming << "' not in: " << r.reason;
+    std::cout << "[ catalogue ] " << swell::test::to_string(entry.bug) << " → " << r.check << ": "
+              << r.reason << "\n";
+  }
+  EXPECT_TRUE(found) << "no result " << entry.check << describe(report);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EngineBugs, Catalogue,
+    ::testing::Values(
+        CatalogueEntry{EngineBug::independent_minus_k_real_part, "energy", "not paired as conj"},
+        CatalogueEntry{EngineBug::independent_minus_k_real_part, "hermitian.imaginary_residue",
+                       "missing conjugate pairing", false, true},
+        CatalogueEntry{EngineBug::same_pair_for_minus_k, "direction.travelling", "same random pair"},
+        CatalogueEntry{EngineBug::checkerboard_sign, "spectrum.unexpected_energy", "checkerboard"},
+        CatalogueEntry{EngineBug::amplitude_without_dk, "energy", "without Δkx Δky"},
+        CatalogueEntry{EngineBug::energy_doubled, "energy", "Tessendorf"},
+        CatalogueEntry{EngineBug::sigma_wrong, "spectrum.shape", "shape differs from the case's"},
+        CatalogueEntry{EngineBug::alpha_sqrt_g, "energy", "α√g"},
+        CatalogueEntry{EngineBug::deep_water_dispersion, "dispersion.residual",
+                       "dispersion of deep water; the case says 10 m", true},
+        CatalogueEntry{EngineBug::omega_equals_gk, "dispersion.residual", "ω = g k"},
+        CatalogueEntry{EngineBug::reversed_time, "direction.distribution", "against the wind"},
+        CatalogueEntry{EngineBug::spreading_not_normalized, "energy",
+                       "spreading function not normalized"},
+        CatalogueEntry{EngineBug::jacobian_without_choppiness, "derived.jacobian", "without λ"},
+        CatalogueEntry{EngineBug::displacement_sign_flipped, "derived.disp_x", "sign flipped"},
+        CatalogueEntry{EngineBug::uniform_noise, "statistics.gaussian_amplitudes", "uniform noise"},
+        CatalogueEntry{EngineBug::band_counted_twice, "spectrum.shape", "band counted twice"},
+        CatalogueEntry{EngineBug::standing_waves, "direction.distribution", "standing waves"},
+        CatalogueEntry{EngineBug::time_drift, "statistics.hs_steady", "Hs drifts"},
+        // Issue 16: diagnoses that name the real cause.
+        CatalogueEntry{EngineBug::transposed_height, "derived.disp_x",
+                       "the field is transposed (x and y exchanged)"},
+        CatalogueEntry{EngineBug::swapped_displacements, "derived.disp_x", "disp_x and disp_y swapped"},
+        CatalogueEntry{EngineBug::half_bin_offset_lattice, "dispersion.residual",
+                       "each bin holds two frequencies, at ω(|2k ± Δk|)"},
+        CatalogueEntry{EngineBug::half_bin_offset_lattice, "dispersion.omega",
+                       "no single ω per wave vector"},
+        CatalogueEntry{EngineBug::hash_collisions, "randomness.reused_numbers",
+                       "share their random pair with another"},
+        CatalogueEntry{EngineBug::heave, "spectrum.unexpected_energy", "the mean level moves (heave)"}),
+    [](const auto& info) {
+      // The bug, and the check of a bug's second entry (letters and digits only).
+      std::string check = info.param.check;
+      for (auto& ch : check) ch = std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+      const bool several = info.param.bug == EngineBug::half_bin_offset_lattice &&
+                           info.param.check == "dispersion.omega";
+      return swell::test::to_string(info.param.bug) + (info.param.complex_output ? "_complex" : "") +
+             (several ? "_" + check : "");
+    });
+
+// Every bug of the test engine is in the catalogue above.
+TEST(Catalogue, CoversEveryBugOfTheTestEngine) {
+  const auto all = swell::test::all_engine_bugs();
+  EXPECT_GE(all.size(), 15u);
+  // The parameterized suite is instantiated once per entry; count them through the registry.
+  const auto* unit = ::testing::UnitTest::GetInstance();
+  std::set<std::string> names;
+  for (int s = 0; s < unit->total_test_suite_count(); ++s) {
+    const auto* suite = unit->GetTestSuite(s);
+    if (std::string(suite->name()) != "EngineBugs/Catalogue") continue;
+    for (int t = 0; t < suite->total_test_count(); ++t) names.insert(suite->GetTestInfo(t)->name());
+  }
+  for (EngineBug bug : all) {
+    const std::string name = "TheGateFailsTheBuggyEngineAndTheFailingCheckNamesTheBug/" +
+                             swell::test::to_string(bug);
+    EXPECT_TRUE(names.count(name)) << swell::test::to_string(bug) << " is not in the catalogue";
+  }
+}
+
+// Dispersion diagnoses beyond the catalogue: frames made for another depth, or with a loop
+// period the case does not declare, are named as such.
+std::string dispersion_reason(const OceanCase& rendered, const OceanCase& declared) {
+  const auto report = swell::validation::run_gate(
+      as_case_file(declared), swell::test::render_surface(rendered), GateOptions{});
+  for (const auto& r : report.results) {
+    if (r.check == "dispersion.residual") {
+      EXPECT_FALSE(r.passed) << r.reason;
+      return r.reason;
+    }
+  }
+  ADD_FAILURE() << "no dispersion result" << describe(report);
+  return "";
+}
+
+TEST(Diagnosis, NamesTheDepthTheFramesFollow) {
+  OceanCase engine = shallow_case();
+  engine.depth = 25;
+  const auto reason = dispersion_reason(engine, shallow_case());
+  EXPECT_NE(reason.find("a depth of 25 m; the case says 10 m"), std::string::npos) << reason;
+}
+
+TEST(Diagnosis, NamesAnUndeclaredLoopPeriod) {
+  OceanCase engine = catalogue_case();
+  engine.loop_period = 40;
+  const auto reason = dispersion_reason(engine, catalogue_case());
+  EXPECT_NE(reason.find("loop period of 40"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("does not declare"), std::string::npos) << reason;
+}
+
+// Another choppiness is named with the least-squares λ — only because it explains the field —
+// and is not called a flipped sign; a field no λ explains says so with the best λ it found.
+TEST(Diagnosis, NamesTheChoppinessTheDisplacementsCarry) {
+  OceanCase engine = catalogue_case();
+  engine.choppiness = 1.2;
+  const auto report = swell::validation::run_gate(as_case_file(catalogue_case()),
+                                                  swell::test::render_surface(engine), GateOptions{});
+  bool found = false;
+  for (const auto& r : report.results) {
+    if (r.check != "derived.disp_x") continue;
+    found = true;
+    EXPECT_FALSE(r.passed);
+    EXPECT_NE(r.reason.find("λ is 1.2, not the case's 0.8"), std::string::npos) << r.reason;
+    EXPECT_EQ(r.reason.find("sign flipped"), std::string::npos) << r.reason;
+  }
+  EXPECT_TRUE(found);
+  // Displacements of a half-bin-offset lattice: positive best λ, not explained, no "sign".
+  const auto offset = swell::validation::run_gate(
+      as_case_file(catalogue_case()),
+      swell::test::render_surface(catalogue_case(), EngineBug::half_bin_offset_lattice), GateOptions{});
+  for (const auto& r : offset.results) {
+    if (r.check != "derived.disp_x") continue;
+    EXPECT_FALSE(r.passed);
+    EXPECT_NE(r.reason.find("no λ explains it"), std::string::npos) << r.reason;
+    EXPECT_EQ(r.reason.find("sign flipped"), std::string::npos) << r.reason;
+  }
+}
+
+// The right engine of both catalogue seas passes the gate.
+TEST(Catalogue, TheRightEnginePasses) {
+  for (const OceanCase& c : {catalogue_case(), shallow_case()}) {
+    const auto report =
+        swell::validation::run_gate(as_case_file(c), swell::test::render_surface(c), GateOptions{});
+    EXPECT_TRUE(report.passed()) << describe(report);
+  }
+}
+
+// ------------------------------------------------------------------ calibration
+
+// Right engines (swell's synthesizer, fp32) over 200 seeds of a 64² sea: the gate fails at
+// most as often as a binomial(200, α) count exceeds with probability 10⁻³.
+TEST(GateCalibration, FamilyWiseFalseAlarmRateOverTwoHundredSeeds) {
+  OceanCase base = catalogue_case();
+  base.grid = Grid::create(64, 64, 400, 400);
+  base.spreading.numbers["s"] = 10.0;
+  const int seeds = 200;
+  for (double alpha : {0.05, 1e-3}) {
+    int failed = 0;
+    for (int s = 0; s < seeds; ++s) {
+      OceanCase c = base;
+      c.seed = 500000 + s;
+      const auto frames = swell::impls::Synthesizer(c, {"fftw", swell::impls::Precision::f32}).frames();
+      GateOptions options;
+      options.alpha = alpha;
+      const auto report = swell::validation::run_gate(as_case_file(c), frames, options);
+      EXPECT_NEAR(report.alpha_per_check * report.statistical_checks, alpha, 1e-12 * alpha);
+      failed += !report.passed();
+    }
+    const boost::math::binomial_distribution<double> law(seeds, alpha);
+    const int bound = int(boost::math::quantile(boost::math::complement(law, 1e-3)));
+    std::cout << "[ calibration ] gate at α = " << alpha << ": " << failed << " of " << seeds
+              << " right engines failed (bound " << bound << ")\n";
+    EXPECT_LE(failed, bound) << "α = " << alpha;
+  }
+}
+
+// The reused-random-number check alone over 240 right surfaces from the synthesizer
+// in fp32: 64² and 128² grids, 8 frames and a single frame at t = 0 (the two ways amplitudes are
+// recovered), 60 seeds each. Its false alarms stay within the binomial bound of α at α = 0.05
+// and 10⁻³; the count of coinciding pairs is printed with its Poisson mean.
+TEST(RandomnessCalibration, ReusedNumbersFalseAlarmRateOverTwoHundredFortySurfaces) {
+  int surfaces = 0, failed_05 = 0, failed_001 = 0;
+  double worst_lambda = 0;
+  long long coinciding = 0;
+  for (int n : {64, 128}) {
+    for (int frames : {8, 1}) {
+      for (int s = 0; s < 60; ++s) {
+        OceanCase c = catalogue_case();
+        c.grid = Grid::create(n, n, 400.0 * n / 64, 400.0 * n / 64);
+        c.frames = frames;
+        c.seed = 900000 + 1000 * n + 10 * frames + s;
+        const auto rendered =
+            swell::impls::Synthesizer(c, {"fftw", swell::impls::Precision::f32}).frames();
+        swell::validation::OceanCheckOptions options;
+        options.alpha = 0.05;
+        const auto report = swell::validation::run_ocean_checks(c, rendered, options, {"randomness"});
+        ASSERT_EQ(report.results.size(), 1u);
+        const auto& r = report.results.front();
+        ++surfaces;
+        failed_05 += r.p_value < 0.05;
+        failed_001 += r.p_value < 1e-3;
+        worst_lambda = std::max(worst_lambda, r.expected);
+        coinciding += (long long)r.measured;
+      }
+    }
+  }
+  for (const auto& [alpha, failed] : {std::pair{0.05, failed_05}, std::pair{1e-3, failed_001}}) {
+    const boost::math::binomial_distribution<double> law(surfaces, alpha);
+    const int bound = int(boost::math::quantile(boost::math::complement(law, 1e-3)));
+    std::cout << "[ calibration ] randomness.reused_numbers at α = " << alpha << ": " << failed
+              << " of " << surfaces << " right surfaces failed (bound " << bound
+              << "); coinciding pairs in all: " << coinciding << ", largest Poisson mean "
+              << worst_lambda << "\n";
+    EXPECT_LE(failed, bound) << "α = " << alpha;
+  }
+}
+
+// The same right engines through 16-bit PNG frames: the quantization noise (u = q/√(12 mean v²))
+// must not raise the false-alarm rate above α. Frames of height and the two
+// displacements (R, G, B), value range ±1.05 × the largest value of the first seed's frames.
+TEST(GateCalibration, SixteenBitPngFalseAlarmRateOverTwoHundredSeeds) {
+  namespace fs = std::filesystem;
+  OceanCase base = catalogue_case();
+  base.grid = Grid::create(64, 64, 400, 400);
+  base.spreading.numbers["s"] = 10.0;
+  const fs::path directory =
+      fs::temp_directory_path() / ("swell_png_calibration_" + std::to_string(::getpid()));
+  const int seeds = 200;
+  const double alpha = 0.05;
+  int failed = 0;
+  double largest_roundoff = 0;
+  swell::validation::FrameWriteOptions write;
+  write.format = swell::validation::FrameFormat::png;
+  for (int s = 0; s < seeds; ++s) {
+    OceanCase c = base;
+    c.seed = 600000 + s;
+    auto frames = swell::impls::Synthesizer(c, {"fftw", swell::impls::Precision::f32}).frames();
+    const double largest = swell::test::keep_rgb_fields(frames);
+    write.png_range = {-1.05 * largest, 1.05 * largest};
+    fs::remove_all(directory);
+    CaseFile case_file = as_case_file(c);
+    case_file.input = swell::validation::write_frames(directory, frames, write);
+    swell::validation::write_case_file(directory / "case.toml", case_file);
+    GateOptions options;
+    options.alpha = alpha;
+    const auto report = swell::validation::run_gate(directory / "case.toml", options);
+    failed += !report.passed();
+    largest_roundoff = std::max(largest_roundoff, report.unit_roundoff);
+  }
+  fs::remove_all(directory);
+  const boost::math::binomial_distribution<double> law(seeds, alpha);
+  const int bound = int(boost::math::quantile(boost::math::complement(law, 1e-3)));
+  std::cout << "[ calibration ] gate on 16-bit PNG at α = " << alpha << ": " << failed << " of "
+            << seeds << " right engines failed (bound " << bound << "); unit roundoff up to "
+            << largest_roundoff << "\n";
+  EXPECT_LE(failed, bound);
+}
+
+}  // namespace
