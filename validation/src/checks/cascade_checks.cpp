@@ -170,6 +170,23 @@ EmptyRuns empty_runs(const SurfaceSpectrum& s, const std::vector<double>& mu, do
   return out;
 }
 
+// The energy a surface shows where its case puts none (μ = 0 on a wave vector its grid
+// carries): the total, and where it lies. What a cascade's band.outside and the sum's judge.
+struct StrayEnergy {
+  double total = 0;
+  std::vector<std::size_t> entries;
+};
+StrayEnergy stray_energy(const SurfaceSpectrum& s) {
+  StrayEnergy out;
+  for (std::size_t e = 0; e < s.power.size(); ++e) {
+    if (carries(s.grid, e) && s.mu[e] == 0) {
+      out.total += s.power[e];
+      out.entries.push_back(e);
+    }
+  }
+  return out;
+}
+
 // The missing-energy result shared by a cascade and the summed surface.
 // `where_empty(a, b, share)` says in the engine's terms who leaves |k| ∈ [a, b] empty.
 CheckResult missing_result(const std::string& name, const std::string& subject,
@@ -295,25 +312,23 @@ CheckResult nested_check(const std::vector<CascadeAnalysis>& cascades);
 
 }  // namespace
 
-std::vector<CheckResult> run_cascade_set_checks(const std::vector<CascadeView>& cascades,
-                                                const std::vector<reference::CascadeMember>& members,
-                                                const CascadeSetOptions& options) {
+CascadeSetResults run_cascade_set_checks(const std::vector<CascadeView>& cascades,
+                                         const std::vector<reference::CascadeMember>& members,
+                                         const CascadeSetOptions& options) {
   // One analysis per cascade, on the gate's threads.
   std::vector<CascadeAnalysis> analyses(cascades.size());
   detail::run_tasks(cascades.size(), options.threads,
                     [&](std::size_t c) { analyses[c] = analyse(cascades[c]); });
-  std::vector<CheckResult> out;
+  CascadeSetResults out;
   if (options.relation == reference::CascadeRelation::additive) {
-    for (const auto& a : analyses) {
-      for (auto& r : band_checks(a, members, options.alpha_per_check)) out.push_back(std::move(r));
-    }
+    for (const auto& a : analyses) out.bands.push_back(band_checks(a, members, options.alpha_per_check));
     if (analyses.size() >= 2) {
-      if (!options.free_scale) out.push_back(energy_check(analyses, options.alpha_per_check));
-      out.push_back(independence_check(analyses, options.alpha_per_check));
-      out.push_back(patch_check(analyses));
+      if (!options.free_scale) out.set.push_back(energy_check(analyses, options.alpha_per_check));
+      out.set.push_back(independence_check(analyses, options.alpha_per_check));
+      out.set.push_back(patch_check(analyses));
     }
   } else if (analyses.size() >= 2) {
-    out.push_back(nested_check(analyses));
+    out.set.push_back(nested_check(analyses));
   }
   return out;
 }
@@ -333,14 +348,9 @@ std::vector<CheckResult> band_checks(const CascadeAnalysis& cascade,
   std::vector<CheckResult> out;
 
   // Outside the band: nothing beyond rounding.
-  double stray = 0;
-  std::vector<std::size_t> outside;
-  for (std::size_t e = 0; e < s.power.size(); ++e) {
-    if (carries(s.grid, e) && s.mu[e] == 0) {
-      stray += s.power[e];
-      outside.push_back(e);
-    }
-  }
+  const StrayEnergy found = stray_energy(s);
+  const double stray = found.total;
+  const std::vector<std::size_t>& outside = found.entries;
   const bool clean = stray <= s.rounding_power;
   std::string reason;
   if (clean) {
@@ -752,14 +762,9 @@ std::vector<CheckResult> check_summed_bands(const OceanCase& summed,
     }
     return out;
   };
-  double stray = 0;
-  std::vector<std::size_t> outside;
-  for (std::size_t e = 0; e < s.power.size(); ++e) {
-    if (carries(g, e) && s.mu[e] == 0) {
-      stray += s.power[e];
-      outside.push_back(e);
-    }
-  }
+  const StrayEnergy found = stray_energy(s);
+  const double stray = found.total;
+  const std::vector<std::size_t>& outside = found.entries;
   const bool clean = stray <= s.rounding_power;
   std::string reason;
   if (clean) {

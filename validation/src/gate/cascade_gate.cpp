@@ -63,15 +63,14 @@ GateReport judge_cascades(const CaseFile& case_file,
   report.alpha_per_check = alpha_per_check;
   report.statistical_checks = statistical;
   std::vector<std::string> samples;
-  auto add_surface = [&](const std::string& name, const CaseFile& surface,
-                         const reference::FrameSequence& frames,
-                         const reference::FrameSequence& ends) {
+  // Judges one surface; its results, named "<name>.<check>", are returned for the caller to
+  // place, its skipped checks go to the report.
+  auto judge_surface = [&](const std::string& name, const CaseFile& surface,
+                           const reference::FrameSequence& frames,
+                           const reference::FrameSequence& ends) {
     options.report_progress(fmt::format("judging {}…", name));
     GateReport part = judge(surface, frames, ends, options, start, alpha_per_check);
-    for (auto& result : part.results) {
-      result.check = name + "." + result.check;
-      report.results.push_back(std::move(result));
-    }
+    for (auto& result : part.results) result.check = name + "." + result.check;
     for (auto& entry : part.skipped) {
       entry.check = name + "." + entry.check;
       report.skipped.push_back(std::move(entry));
@@ -85,16 +84,24 @@ GateReport judge_cascades(const CaseFile& case_file,
     }
     report.unit_roundoff = std::max(report.unit_roundoff, part.unit_roundoff);
     samples.push_back(fmt::format("{} {}", name, part.samples));
+    return std::move(part.results);
+  };
+  // Each surface's results together: cascade 0's (its band checks after its ordinary ones),
+  // cascade 1's, …, the set's, the sum's.
+  auto append = [&](std::vector<CheckResult>& results) {
+    for (auto& result : results) report.results.push_back(std::move(result));
   };
   std::vector<CascadeView> views;
   std::vector<reference::OceanCase> oceans(cascades.size());
   for (auto c : given) oceans[c] = case_file.cascade_case(c);
+  std::vector<std::vector<CheckResult>> ordinary(cascades.size());
   for (auto c : given) {
     const std::string name = fmt::format("cascade{}", c);
-    add_surface(name, surface_case_file(case_file, oceans[c], case_file.cascades[c].input),
-                cascades[c], cascade_ends[c]);
+    ordinary[c] = judge_surface(name, surface_case_file(case_file, oceans[c], case_file.cascades[c].input),
+                                cascades[c], cascade_ends[c]);
     views.push_back({int(c), &oceans[c], &cascades[c]});
   }
+  CascadeSetResults set_results;
   if (!views.empty()) {
     options.report_progress("judging the set…");
     CascadeSetOptions set_options;
@@ -102,30 +109,24 @@ GateReport judge_cascades(const CaseFile& case_file,
     set_options.alpha_per_check = alpha_per_check;
     set_options.free_scale = free;
     set_options.threads = options.resolved_threads();
-    for (auto& result : run_cascade_set_checks(views, case_file.members(), set_options)) {
-      report.results.push_back(std::move(result));
-    }
+    set_results = run_cascade_set_checks(views, case_file.members(), set_options);
   }
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    append(ordinary[std::size_t(views[v].index)]);
+    if (v < set_results.bands.size()) append(set_results.bands[v]);
+  }
+  append(set_results.set);
   if (!set_checks && !given.empty() && case_file.cascades.size() >= 2) {
     report.skipped.push_back(
         {"cascades", SkipReason::too_few_cascades, "needs the frames of two or more cascades"});
   }
   if (sum) {
-    add_surface("sum", surface_case_file(case_file, *summed, case_file.sum), *sum, *sum_ends);
-    for (auto& result : check_summed_bands(*summed, *sum, alpha_per_check)) {
-      report.results.push_back(std::move(result));
-    }
+    auto results = judge_surface("sum", surface_case_file(case_file, *summed, case_file.sum), *sum,
+                                 *sum_ends);
+    append(results);
+    auto bands = check_summed_bands(*summed, *sum, alpha_per_check);
+    append(bands);
   }
-  // Each surface's results together: cascade 0's (its band checks included), cascade 1's, …,
-  // the set's, the sum's.
-  auto group = [&](const CheckResult& r) -> std::size_t {
-    const std::string head = r.check.substr(0, r.check.find('.'));
-    if (head == "cascades") return case_file.cascades.size();
-    if (head == "sum") return case_file.cascades.size() + 1;
-    return std::size_t(std::stoul(head.substr(std::string("cascade").size())));
-  };
-  std::stable_sort(report.results.begin(), report.results.end(),
-                   [&](const CheckResult& x, const CheckResult& y) { return group(x) < group(y); });
   report.samples = fmt::format("{}", fmt::join(samples, ", "));
   report.seconds = seconds_since(start);
   return report;

@@ -42,12 +42,16 @@ struct CascadeSetOptions {
   bool free_scale = false;        // the engine's scale is free: no energy check
   int threads = 1;                // the cascades are analysed concurrently
 };
-// The band checks of every cascade (additive) and the set's checks, in that order: an additive
-// set's energy (unless free_scale), independence and patch; a nested set's nested check. The set
+// The band checks of every cascade (additive sets), and the set's checks: an additive set's
+// energy (unless free_scale), independence and patch; a nested set's nested check. The set
 // checks need two cascades; `members` are the whole set's (naming who else carries a range).
-std::vector<CheckResult> run_cascade_set_checks(const std::vector<CascadeView>& cascades,
-                                                const std::vector<reference::CascadeMember>& members,
-                                                const CascadeSetOptions& options);
+struct CascadeSetResults {
+  std::vector<std::vector<CheckResult>> bands;  // bands[v]: cascades[v]'s ("cascadeN.band.…")
+  std::vector<CheckResult> set;                 // the set's ("cascades.…")
+};
+CascadeSetResults run_cascade_set_checks(const std::vector<CascadeView>& cascades,
+                                         const std::vector<reference::CascadeMember>& members,
+                                         const CascadeSetOptions& options);
 // The band checks on a summed surface (`summed` has members).
 std::vector<CheckResult> check_summed_bands(const reference::OceanCase& summed,
                                             const reference::FrameSequence& frames, double alpha);
