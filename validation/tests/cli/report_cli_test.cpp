@@ -3,7 +3,7 @@
 // from (medians recomputed here from the repetitions, GFLOP/s from benchFFT's formula), the
 // figures' PNG signatures when gnuplot is present, the machine context's keys, and the
 // comparison of a run with itself (no significant change) and with a run of a deliberately
-// slowed backend (null spinning 200 µs per transform: significantly slower, and the other way
+// slowed backend (null spinning 2 ms per transform: significantly slower, and the other way
 // faster). Bad options exit 2 naming what was wrong.
 #include <gtest/gtest.h>
 
@@ -53,8 +53,11 @@ class ReportCli : public ::testing::Test {
     ASSERT_EQ(a.exit_code, 0) << a.output;
     auto slow = swell("bench --impl null" + common + " --out " + (root / "slow").string(), 600);
     ASSERT_EQ(slow.exit_code, 0) << slow.output;
-    // The same benchmark names, slowed: null spins 200 µs per transform.
-    ::setenv("SWELL_NULL_DELAY_US", "200", 1);
+    // The same benchmark names, slowed: null spins 2 ms per transform. A repetition of the
+    // unslowed null (≈ 400 iterations of ≈ 5 µs) would have to lose more than 0.8 s to the
+    // scheduler to look as slow; with a 200 µs spin a 0.1 s stall on a loaded 2-core machine is
+    // enough to mix the two samples.
+    ::setenv("SWELL_NULL_DELAY_US", "2000", 1);
     auto slowed = swell("bench --impl null" + common + " --out " + (root / "slowed").string(), 600);
     ::unsetenv("SWELL_NULL_DELAY_US");
     ASSERT_EQ(slowed.exit_code, 0) << slowed.output;
@@ -169,7 +172,7 @@ TEST_F(ReportCli, ARunAgainstItselfHasNoSignificantChange) {
   EXPECT_DOUBLE_EQ(c["threshold"].get<double>(), 0.35);  // separately made runs
 }
 
-// null takes well under 10 µs at 64² and 128²; spinning 200 µs makes it 20× slower or more,
+// null takes well under 10 µs at 64² and 128²; spinning 2 ms makes it 200× slower or more,
 // and 9 against 9 completely separated repetitions give p = 4.1e-4 (the U test's smallest).
 TEST_F(ReportCli, ASlowedBackendIsSignificantlySlowerAndTheOtherWayFaster) {
   auto run = swell("report " + (root / "slowed").string() + " --against " + (root / "slow").string() +
