@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "../src/exr_scanlines.hpp"
+#include "../src/io/exr_scanlines.hpp"
 
 namespace {
 
