@@ -155,11 +155,17 @@ void require_judgeable_rounding(const OceanCase& ocean_case, double unit_roundof
   }
 }
 
+std::vector<double> expected_travelling_power(const OceanCase& ocean_case, int threads) {
+  return expected_travelling_power(*ocean_case.directional_spectrum(), ocean_case.sampling(),
+                                   threads);
+}
+
 OceanCheckReport run_ocean_checks(const OceanCase& ocean_case, const FrameSequence& frames,
                                   const OceanCheckOptions& options,
                                   const std::vector<std::string>& checks) {
   for (const auto& name : checks) entry(name);
-  return run_on(Analysis(ocean_case, frames, options), checks, true);
+  return run_on(Analysis(ocean_case, frames, options, expected_travelling_power(ocean_case)),
+                checks, true);
 }
 
 std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case,
@@ -167,14 +173,16 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
                                                      const FrameSequence& ends,
                                                      const OceanCheckOptions& options,
                                                      const std::vector<OceanCheckGroup>& groups,
-                                                     int threads,
-                                                     std::vector<double> travelling_power) {
+                                                     std::vector<double> travelling_power,
+                                                     int threads) {
   for (const auto& group : groups) {
     for (const auto& name : group.checks) entry(name);
   }
   // One analysis of the surface for every group, and one over the end frames that shares it
   // when their frame 0 is the same field.
-  const Analysis analysis(ocean_case, frames, options, threads, std::move(travelling_power));
+  std::vector<double> ends_travelling_power;
+  if (&ends != &frames) ends_travelling_power = travelling_power;
+  const Analysis analysis(ocean_case, frames, options, std::move(travelling_power), threads);
   const bool same_first = &ends == &frames || ends.field(0, Field::height) == frames.field(0, Field::height);
   std::optional<Analysis> ends_analysis;
   const bool any_ends = std::any_of(groups.begin(), groups.end(), [](const OceanCheckGroup& g) { return g.ends_only; });
@@ -182,7 +190,7 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
     if (same_first) {
       ends_analysis.emplace(analysis, ends);
     } else {
-      ends_analysis.emplace(ocean_case, ends, options);
+      ends_analysis.emplace(ocean_case, ends, options, std::move(ends_travelling_power));
     }
   }
   // The wave series and per-wave fits the checks read, made first on every thread: a group that

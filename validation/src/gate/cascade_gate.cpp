@@ -10,6 +10,7 @@
 #include "swell/reference/errors.hpp"
 #include "swell/reference/sampling_validity.hpp"
 #include "swell/validation/checks/cascade_checks.hpp"
+#include "swell/validation/checks/ocean_checks.hpp"
 #include "swell/validation/gate/gate.hpp"
 
 namespace swell::validation {
@@ -69,7 +70,9 @@ GateReport judge_cascades(const CaseFile& case_file,
                            const reference::FrameSequence& frames,
                            const reference::FrameSequence& ends) {
     options.report_progress(fmt::format("judging {}…", name));
-    GateReport part = judge(surface, frames, ends, options, start, alpha_per_check);
+    GateReport part = judge(surface, frames, ends,
+                            expected_travelling_power(surface.ocean, options.resolved_threads()),
+                            options, start, alpha_per_check);
     for (auto& result : part.results) result.check = name + "." + result.check;
     for (auto& entry : part.skipped) {
       entry.check = name + "." + entry.check;

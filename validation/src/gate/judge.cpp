@@ -29,9 +29,8 @@ std::vector<std::string> statistical_checks(SpectrumScale scale, std::size_t fra
 }
 
 GateReport judge(const CaseFile& case_file, const reference::FrameSequence& frames,
-                 const reference::FrameSequence& ends, const GateOptions& options,
-                 Clock::time_point start, double alpha_per_check,
-                 std::vector<double> travelling_power) {
+                 const reference::FrameSequence& ends, std::vector<double> travelling_power,
+                 const GateOptions& options, Clock::time_point start, double alpha_per_check) {
   options.validate();
   const int threads = options.resolved_threads();
   GateReport report;
@@ -65,7 +64,7 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
   // Bad input (a grid that does not match, no height field) is thrown by the analysis.
   auto parts = run_ocean_check_groups(case_file.ocean, frames, ends, check_options,
                                       ocean_check_groups_longest_first(),
-                                      threads, std::move(travelling_power));
+                                      std::move(travelling_power), threads);
   // Merged in the table's order, the fitted scale of a free-scale case first.
   for (auto& part : parts) {
     for (auto& result : part.results) report.results.push_back(std::move(result));

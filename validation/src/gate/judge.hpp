@@ -45,13 +45,12 @@ CaseFile surface_case_file(const CaseFile& set, const reference::OceanCase& ocea
 
 // Judges one surface's frames (`ends`: its first and last frames with every field) at
 // `alpha_per_check` each (NaN: options.alpha shared by this surface's statistical checks alone;
-// a cascade set shares α over all its surfaces). `travelling_power`: τ(k) on the case's samples
-// when already evaluated (ocean_checks.hpp), else empty.
+// a cascade set shares α over all its surfaces). `travelling_power`: τ(k) of the case on its
+// samples (expected_travelling_power in ocean_checks.hpp), evaluated once before reading.
 GateReport judge(const CaseFile& case_file, const reference::FrameSequence& frames,
-                 const reference::FrameSequence& ends, const GateOptions& options,
-                 Clock::time_point start,
-                 double alpha_per_check = std::numeric_limits<double>::quiet_NaN(),
-                 std::vector<double> travelling_power = {});
+                 const reference::FrameSequence& ends, std::vector<double> travelling_power,
+                 const GateOptions& options, Clock::time_point start,
+                 double alpha_per_check = std::numeric_limits<double>::quiet_NaN());
 
 // Reads the frames of every cascade and of the sum that a cascade set names, then judges them
 // (cascade_gate.cpp).

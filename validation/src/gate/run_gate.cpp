@@ -8,7 +8,7 @@
 #include "swell/reference/errors.hpp"
 #include "swell/reference/sampling_validity.hpp"
 #include "swell/validation/gate/gate.hpp"
-#include "swell/validation/stats/periodogram.hpp"
+#include "swell/validation/checks/ocean_checks.hpp"
 
 namespace swell::validation {
 
@@ -28,15 +28,14 @@ GateReport read_and_judge(const CaseFile& case_file, const GateOptions& options,
   // stored format. τ(k) over the samples is evaluated once, on every thread, for this rule and
   // for the analysis.
   const auto sampling = ocean.sampling();
-  std::vector<double> travelling =
-      expected_travelling_power(*ocean.directional_spectrum(), sampling, threads);
+  std::vector<double> travelling = expected_travelling_power(ocean, threads);
   reference::require_valid_sampling(ocean, reference::kFloat64, 0, "", &travelling);
   options.report_progress(fmt::format("reading {} frame{} on a {}…", ocean.frames,
                                       ocean.frames == 1 ? "" : "s", sampling.describe()));
   const GateFrames frames = read_gate_frames(case_file, options.input_pattern, threads);
   const double reading = seconds_since(start);
-  GateReport report = judge(case_file, frames.all, frames.ends, options, start,
-                            std::numeric_limits<double>::quiet_NaN(), std::move(travelling));
+  GateReport report = judge(case_file, frames.all, frames.ends, std::move(travelling), options,
+                            start);
   report.case_path = case_file.origin.string();
   report.read_seconds = reading;
   return report;
@@ -56,7 +55,10 @@ GateReport run_gate(const CaseFile& case_file, const GateOptions& options) {
 
 GateReport run_gate(const CaseFile& case_file, const reference::FrameSequence& frames,
                     const GateOptions& options) {
-  return judge(case_file, frames, frames, options, Clock::now());
+  options.validate();
+  return judge(case_file, frames, frames,
+               expected_travelling_power(case_file.ocean, options.resolved_threads()), options,
+               Clock::now());
 }
 
 }  // namespace swell::validation

@@ -142,11 +142,10 @@ class WaveSeries {
 
 class Analysis {
  public:
-  // `threads` (≥ 1) for Ψ over the grid here and the shared work below (wave_series, wave_fits).
-  // `travelling`: τ(k) over the samples when the caller has it (run_ocean_check_groups); empty:
-  // evaluated here.
+  // `travelling`: τ(k) of the case on its samples (expected_travelling_power), evaluated once by
+  // whoever runs the checks. `threads` (≥ 1) for the shared work below (wave_series, wave_fits).
   Analysis(const OceanCase& ocean_case, const FrameSequence& frames,
-           const OceanCheckOptions& options, int threads = 1, std::vector<double> travelling = {})
+           const OceanCheckOptions& options, std::vector<double> travelling, int threads = 1)
       : c_(ocean_case), frames_(frames), options_(options), sampling_(ocean_case.sampling()),
         threads_(std::max(1, threads)) {
     const Sampling given = frames.sampling();
@@ -164,14 +163,10 @@ class Analysis {
     u_ = std::max(frames.unit_roundoff, kFp64Roundoff);
     for (const auto& frame : frames.frames) times_.push_back(frame.time);
 
-    const auto spectrum = c_.directional_spectrum();
-    if (travelling.empty()) {
-      shared_->tau = expected_travelling_power(*spectrum, sampling_, threads_);
-    } else if (travelling.size() == sampling_.size()) {
-      shared_->tau = std::move(travelling);
-    } else {
+    if (travelling.size() != sampling_.size()) {
       throw InternalError("Analysis: travelling power of the wrong size");
     }
+    shared_->tau = std::move(travelling);
     // Two independent parts side by side (the second is an FFT): run_tasks rethrows the first
     // part's error before the second's, so the error reported is the one a sequential run meets
     // first.

@@ -63,14 +63,18 @@ std::vector<std::string> ocean_check_names();
 // for a result of no check of the table (the fitted scale).
 std::size_t ocean_check_position(const std::string& check);
 
+// τ(k) of the case's directional spectrum on the case's own samples (stats/periodogram.hpp), on
+// up to `threads` threads: what an analysis of the case's frames starts from.
+std::vector<double> expected_travelling_power(const reference::OceanCase& ocean_case,
+                                              int threads = 1);
+
 // Groups of checks run concurrently on `threads` threads (the gate): every group judges one
 // analysis of `frames`, made once; a group marked ends_only judges `ends` instead (the first and
 // last frames with every field; its analysis is copied from the first when both have the same
 // frame 0). Reports in the groups' order (with a free scale the first begins with the fitted
-// scale); the first group's error is thrown. `travelling_power`:
-// τ(k) of the case on its samples (expected_travelling_power) when the caller has evaluated it
-// already (the gate, for its sampling check before reading), moved into the analysis instead
-// of evaluating Ψ over the samples again; empty: evaluated here.
+// scale); the first group's error is thrown. `travelling_power`: τ(k) of the case on its samples
+// (expected_travelling_power(ocean_case, threads)), which the gate evaluates once before reading
+// for its sampling rule and hands to the analysis.
 struct OceanCheckGroup {
   std::vector<std::string> checks;
   bool ends_only = false;
@@ -83,8 +87,8 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const reference::OceanCase&
                                                      const reference::FrameSequence& ends,
                                                      const OceanCheckOptions& options,
                                                      const std::vector<OceanCheckGroup>& groups,
-                                                     int threads,
-                                                     std::vector<double> travelling_power = {});
+                                                     std::vector<double> travelling_power,
+                                                     int threads);
 
 // Runs the checks named (all when empty) on `frames`, which must match the case's grid.
 // Throws InvalidInput for an unknown check name, mismatched grids or frames without height.
