@@ -22,13 +22,13 @@
 #include <numbers>
 
 #include "fit/jonswap_normalization.hpp"
+#include "fit/whitened_bfgs.hpp"
 #include "swell/reference/errors.hpp"
 
 namespace swell::validation {
 namespace {
 
 const double kLog16 = std::log(16.0);
-constexpr double kZ975 = 1.959963984540054;  // χ²₁(0.95) = z², the profile's drop 1.92
 
 // Values of at least this many quanta are taken as exact (density term); smaller ones as the
 // interval they were rounded from. At 10 quanta the rounding's half-width is 5 % of the value,
@@ -39,6 +39,9 @@ constexpr double kExactQuanta = 10;
 // ---------------------------------------------------------------- the normalization F(γ)
 
 using fit_detail::jonswap_normalization;
+using fit_detail::kZ975;
+using fit_detail::minimize_bfgs;
+using fit_detail::whitening;
 
 // log F and its derivative in γ (σa, σb fixed: jonswap_normalization.hpp).
 double log_normalization(double gamma, double sa, double sb) {
@@ -257,28 +260,6 @@ Eigen::Matrix3d whitening_information(const Likelihood& l, Eigen::Vector3d phi) 
   return f;
 }
 
-template <int K>
-Eigen::Matrix<double, 3, K> whitening(const Eigen::Matrix3d& f, int fixed) {
-  std::array<int, K> free{};
-  for (int i = 0, j = 0; i < 3; ++i) {
-    if (i != fixed) free[j++] = i;
-  }
-  Eigen::Matrix<double, K, K> f_free;
-  for (int a = 0; a < K; ++a) {
-    for (int b = 0; b < K; ++b) f_free(a, b) = f(free[a], free[b]);
-  }
-  Eigen::Matrix<double, K, K> m = Eigen::Matrix<double, K, K>::Identity();
-  const Eigen::LLT<Eigen::Matrix<double, K, K>> llt(f_free);
-  if (llt.info() == Eigen::Success) {
-    const Eigen::Matrix<double, K, K> l = llt.matrixL();
-    const Eigen::Matrix<double, K, K> inv =
-        l.template triangularView<Eigen::Lower>().solve(Eigen::Matrix<double, K, K>::Identity());
-    if (inv.allFinite()) m = inv.transpose();
-  }
-  Eigen::Matrix<double, 3, K> out = Eigen::Matrix<double, 3, K>::Zero();
-  for (int a = 0; a < K; ++a) out.row(free[a]) = m.row(a);
-  return out;
-}
 
 struct Optimum {
   Eigen::Vector3d phi;
@@ -292,25 +273,15 @@ struct Optimum {
 // standard errors, and 1e-6 of one is far below anything reported.
 template <int K>
 Optimum optimize(const Likelihood& l, const Eigen::Vector3d& start, int fixed) {
-  const auto to_phi = whitening<K>(whitening_information(l, start), fixed);
-  ceres::GradientProblem problem(
-      new ceres::AutoDiffFirstOrderFunction<Cost<K>, K>(new Cost<K>{&l, start, to_phi}));
-  ceres::GradientProblemSolver::Options options;
-  options.line_search_direction_type = ceres::BFGS;
-  options.max_num_iterations = 500;
-  options.gradient_tolerance = 1e-6;
-  options.function_tolerance = 1e-15;
-  options.parameter_tolerance = 1e-13;
-  options.logging_type = ceres::SILENT;
+  const auto to_phi = whitening<3, K>(whitening_information(l, start), fixed);
   double u[K] = {};
-  ceres::GradientProblemSolver::Summary summary;
-  ceres::Solve(options, problem, u, &summary);
+  const auto run = minimize_bfgs(new Cost<K>{&l, start, to_phi}, u, 1e-6);
   Optimum o;
   o.phi = start + to_phi * Eigen::Map<const Eigen::Matrix<double, K, 1>>(u);
   o.cost = cost_at(l, o.phi);
-  o.iterations = int(summary.iterations.size()) - 1;
-  o.converged = summary.termination_type == ceres::CONVERGENCE;
-  o.report = summary.BriefReport();
+  o.iterations = run.iterations;
+  o.converged = run.converged;
+  o.report = run.report;
   return o;
 }
 

@@ -35,6 +35,7 @@
 #include "swell/reference/spreading.hpp"
 #include "swell/validation/stats/periodogram.hpp"
 #include "fit/jonswap_normalization.hpp"
+#include "fit/whitened_bfgs.hpp"
 #include "swell/validation/results/report.hpp"
 
 namespace swell::validation {
@@ -58,6 +59,9 @@ constexpr double kNoiseMargin = 1e3;
 // ---------------------------------------------------------------- the normalization F
 
 using fit_detail::jonswap_normalization;
+using fit_detail::kZ975;
+using fit_detail::minimize_bfgs;
+using fit_detail::whitening;
 
 // F for doubles, and for Ceres' Jets with the chain rule through the quadrature derivatives.
 double normalization_of(double gamma, double sigma_a, double sigma_b) {
@@ -247,11 +251,9 @@ double eta_of_gamma(double gamma, double sign = 1.0) {
   return std::copysign(std::sqrt(std::max(0.0, gamma - 1.0)), sign);
 }
 
-// Ceres minimizes over whitened coordinates u, φ = φ0 + M u, M = L⁻ᵀ (N × M_free) from the
-// Fisher information F_φ = L Lᵀ of the free coordinates (zero rows for a coordinate held fixed
-// by a profile): there the Hessian of −log L is ≈ the identity, so BFGS starts well scaled, and
-// the gradient in u measures the distance to the optimum in standard errors, which makes
-// gradient_tolerance a statement about statistics, not units.
+// Ceres minimizes over whitened coordinates u, φ = φ0 + M u (whitened_bfgs.hpp), M from the
+// Fisher information F_φ of the free coordinates (zero rows for a coordinate held fixed by a
+// profile).
 //
 // A step into a region where the model cannot be evaluated (the normalization's quadrature
 // does not reach its accuracy, for γ beyond ~1e300 or σ at rounding level) is reported to
@@ -319,30 +321,6 @@ Eigen::Matrix<double, N, N> fisher_natural(const Whittle& w, const std::array<do
   return w.fisher<N>(log(hs), log(tp), log(gamma), sa, sb);
 }
 
-// M = L⁻ᵀ for the free coordinates (all but `fixed`; fixed = −1: none) embedded in N rows; the
-// identity on the free coordinates if F is not positive definite there.
-template <int N, int M>
-Eigen::Matrix<double, N, M> whitening(const Eigen::Matrix<double, N, N>& f_phi, int fixed) {
-  std::array<int, M> free{};
-  for (int i = 0, j = 0; i < N; ++i) {
-    if (i != fixed) free[j++] = i;
-  }
-  Eigen::Matrix<double, M, M> f_free;
-  for (int a = 0; a < M; ++a) {
-    for (int b = 0; b < M; ++b) f_free(a, b) = f_phi(free[a], free[b]);
-  }
-  Eigen::Matrix<double, M, M> l_inverse_t = Eigen::Matrix<double, M, M>::Identity();
-  const Eigen::LLT<Eigen::Matrix<double, M, M>> llt(f_free);
-  if (llt.info() == Eigen::Success) {
-    const Eigen::Matrix<double, M, M> l = llt.matrixL();
-    const Eigen::Matrix<double, M, M> inv =
-        l.template triangularView<Eigen::Lower>().solve(Eigen::Matrix<double, M, M>::Identity());
-    if (inv.allFinite()) l_inverse_t = inv.transpose();
-  }
-  Eigen::Matrix<double, N, M> out = Eigen::Matrix<double, N, M>::Zero();
-  for (int a = 0; a < M; ++a) out.row(free[a]) = l_inverse_t.row(a);
-  return out;
-}
 
 struct Optimum {
   double nll = HUGE_VAL;  // relative (Whittle::relative_nll)
@@ -355,30 +333,17 @@ struct Optimum {
 template <int N, int M>
 std::pair<Vector<N>, Optimum> optimize(const Whittle& w, const Vector<N>& start,
                                        const Eigen::Matrix<double, N, M>& to_phi) {
-  ceres::GradientProblem problem(new ceres::AutoDiffFirstOrderFunction<WhittleCost<N, M>, M>(
-      new WhittleCost<N, M>{&w, start, to_phi}));
-  ceres::GradientProblemSolver::Options options;
-  // Dense BFGS: 2 to 5 parameters. In whitened coordinates the gradient is the distance to the
-  // optimum in standard errors: stop at 1e-5 of one. The relative cost change is not a useful
-  // criterion (the cost is relative to the start and may be tiny), so function_tolerance is
-  // effectively off, and parameter_tolerance only stops steps below rounding.
-  options.line_search_direction_type = ceres::BFGS;
-  options.max_num_iterations = 500;
-  options.gradient_tolerance = 1e-5;
-  options.function_tolerance = 1e-15;
-  options.parameter_tolerance = 1e-13;
-  options.logging_type = ceres::SILENT;
+  // Dense BFGS on 2 to 5 parameters, stopped at 1e-5 of a standard error (whitened_bfgs.hpp).
   double u[M] = {};
-  ceres::GradientProblemSolver::Summary summary;
-  ceres::Solve(options, problem, u, &summary);
+  const auto run = minimize_bfgs(new WhittleCost<N, M>{&w, start, to_phi}, u, 1e-5);
   Vector<N> phi = start + to_phi * Eigen::Map<const Vector<M>>(u);
   Optimum o;
-  // Evaluated again at the returned point rather than taken from summary.final_cost, which is
-  // not a cost at all when Ceres fails at its first evaluation (an infeasible warm start).
+  // Evaluated again at the returned point rather than taken from the solver's final cost, which
+  // is not a cost at all when Ceres fails at its first evaluation (an infeasible warm start).
   o.nll = nll_at<N>(w, phi);
-  o.iterations = int(summary.iterations.size()) - 1;
-  o.converged = summary.termination_type == ceres::CONVERGENCE;
-  o.report = summary.BriefReport();
+  o.iterations = run.iterations;
+  o.converged = run.converged;
+  o.report = run.report;
   return {phi, o};
 }
 
@@ -403,11 +368,8 @@ Solution minimize(const Whittle& w, const Vector<N>& phi0) {
 
 // ---------------------------------------------------------------- profile-likelihood intervals
 
-// χ²₁(0.95) = z²_0.975: the likelihood-ratio interval {ψ : 2(ℓ(θ̂) − ℓ_p(ψ)) ≤ 3.8415}
-// (e.g. Pawitan 2001, "In All Likelihood", §3.4 and §10.6; Venzon & Moolgavkar 1988 for
-// finding its ends by root finding on the profile).
-constexpr double kZ975 = 1.959963984540054;
-
+// The ends of the likelihood-ratio interval at kZ975 are found by root finding on the profile
+// (Venzon & Moolgavkar 1988).
 // The end of the profile interval of φ's coordinate `p` on one side, found in t: t = φ_p for
 // log Hs, log Tp, log σ, and t = log γ for γ (profiles are close to quadratic in log γ, not in
 // η, and t ≥ 0 is γ ≥ 1). Root finding on the signed root r(t) = √(2 Δnll), which is nearly
