@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <glog/logging.h>
 #include <fstream>
 #include <iostream>
 #include <new>
@@ -52,6 +53,10 @@ std::string backends_summary() {
 }  // namespace swell::cli
 
 int main(int argc, char** argv) {
+  // Ceres logs each BFGS restart of its line search as a glog warning ("Numerical failure in
+  // BFGS update…": hundreds over a buoy record); the fits report their own convergence
+  // (docs/fit.md §3), so only Ceres's errors reach standard error.
+  FLAGS_minloglevel = google::GLOG_ERROR;
   CLI::App app{"swell: checks ocean-wave spectra, surfaces and FFTs against physics and each other"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "swell 0.1.0");
