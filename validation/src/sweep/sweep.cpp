@@ -19,6 +19,7 @@
 #include "swell/validation/fit/jonswap_fit.hpp"
 #include "swell/validation/results/report.hpp"
 #include "swell/validation/stats/periodogram.hpp"
+#include "swell/validation/stats/sample_moments.hpp"
 
 namespace swell::validation::sweep {
 namespace {
@@ -494,22 +495,15 @@ RunRow run(const SweepSpec& spec, const Point& point, int replicate) {
     count += n;
   }
   const double mean = double(sum / (long double)count);
-  long double m2 = 0, m3 = 0, m4 = 0;
+  stats::SampleMoments<long double> height;
   for (const auto& frame : frames.frames) {
-    for (const double h : frame.fields.at(reference::Field::height)) {
-      const long double d = h - mean, d2 = d * d;
-      m2 += d2;
-      m3 += d2 * d;
-      m4 += d2 * d2;
-    }
+    height.add(frame.fields.at(reference::Field::height), mean);
   }
-  m2 /= count;
-  m3 /= count;
-  m4 /= count;
+  const long double m2 = height.variance();
   auto& s = row.statistics;
   s["hs"] = 4 * std::sqrt(double(m2));
-  s["skewness"] = m2 > 0 ? double(m3 / std::pow(m2, 1.5L)) : kNaN;
-  s["excess_kurtosis"] = m2 > 0 ? double(m4 / (m2 * m2) - 3) : kNaN;
+  s["skewness"] = m2 > 0 ? double(height.skewness()) : kNaN;
+  s["excess_kurtosis"] = m2 > 0 ? double(height.excess_kurtosis()) : kNaN;
   s["foam_fraction"] = double(folded) / double(count);
   s["min_jacobian"] = min_j;
 
