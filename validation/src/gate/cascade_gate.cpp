@@ -49,12 +49,12 @@ GateReport judge_cascades(const CaseFile& case_file,
   const bool free = case_file.scale == SpectrumScale::free;
   int statistical = 0;
   for (auto c : given) {
-    statistical += int(statistical_checks(case_file.scale, cascades[c].frames.size()).size());
+    statistical += statistical_check_count(case_file.scale, cascades[c].frames.size());
     if (additive) ++statistical;
   }
   const bool set_checks = given.size() >= 2;
   if (set_checks && additive) statistical += free ? 1 : 2;
-  if (sum) statistical += int(statistical_checks(case_file.scale, sum->frames.size()).size()) + 1;
+  if (sum) statistical += statistical_check_count(case_file.scale, sum->frames.size()) + 1;
   const double alpha_per_check = options.alpha / double(std::max(1, statistical));
 
   GateReport report;

@@ -20,12 +20,8 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-std::vector<std::string> statistical_checks(SpectrumScale scale, std::size_t frames) {
-  std::vector<std::string> out;
-  for (auto name : statistical_ocean_checks(scale == SpectrumScale::free, frames)) {
-    out.emplace_back(name);
-  }
-  return out;
+int statistical_check_count(SpectrumScale scale, std::size_t frames) {
+  return int(statistical_ocean_checks(scale == SpectrumScale::free, frames).size());
 }
 
 GateReport judge(const CaseFile& case_file, const reference::FrameSequence& frames,
@@ -44,11 +40,11 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
   for (Field field : reference::kAllFields) {
     if (ends.has(field)) report.fields.push_back(reference::field_name(field));
   }
-  const auto shared = statistical_checks(case_file.scale, frames.frames.size());
   report.alpha = options.alpha;
-  report.statistical_checks = int(shared.size());
-  report.alpha_per_check = std::isnan(alpha_per_check) ? options.alpha / double(shared.size())
-                                                      : alpha_per_check;
+  report.statistical_checks = statistical_check_count(case_file.scale, frames.frames.size());
+  report.alpha_per_check = std::isnan(alpha_per_check)
+                               ? options.alpha / double(report.statistical_checks)
+                               : alpha_per_check;
 
   OceanCheckOptions check_options;
   check_options.alpha = report.alpha_per_check;

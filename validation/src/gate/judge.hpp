@@ -17,9 +17,9 @@ namespace swell::validation::gate_path {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start);
 
-// The statistical checks run_ocean_checks runs on `frames` frames of a case of this scale, each
-// at its share of α.
-std::vector<std::string> statistical_checks(SpectrumScale scale, std::size_t frames);
+// How many statistical checks run_ocean_checks runs on `frames` frames of a case of this scale,
+// each at its share of α.
+int statistical_check_count(SpectrumScale scale, std::size_t frames);
 
 // Throws InvalidInput (naming swell gate and the frames) when reading `ocean`'s frames on
 // `threads` threads needs more memory than the machine has; called before anything of the
