@@ -521,18 +521,8 @@ void read_cascades(const Reporter& report, const toml::table& document, CaseFile
   }
 }
 
-}  // namespace
-
-CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
-  const Reporter report(origin.string());
-  toml::table document;
-  try {
-    document = toml::parse(text, origin.string());
-  } catch (const toml::parse_error& e) {
-    report.fail(e.source(), fmt::format("not valid TOML: {}", e.description()));
-  }
-
-  // Sections: each a table, none unknown.
+// Every top-level key is a known section: a table, or [[cascade]] an array of tables.
+void check_sections(const Reporter& report, const toml::table& document) {
   for (auto&& [key, node] : document) {
     const std::string name(key.str());
     if (std::find(kSections.begin(), kSections.end(), name) == kSections.end()) {
@@ -552,17 +542,18 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
                                             name, type_name(node)));
     }
   }
-  auto section = [&](const std::string& name) {
-    return Section(report, name, document.get_as<toml::table>(name));
-  };
+}
 
-  CaseFile out;
-  out.origin = origin;
-  out.directory = origin.parent_path();
+Section section_of(const Reporter& report, const toml::table& document, const std::string& name) {
+  return Section(report, name, document.get_as<toml::table>(name));
+}
+
+// [sampling] kind = "grid" (the default: [grid] n and length) or "lattice" (points and
+// generator here, [grid] length only; docs/conventions.md §2.1). [grid] n, length: required
+// (length only for a lattice); a cascade set gives a grid per [[cascade]] instead.
+void read_sampling(const Reporter& report, const toml::table& document, CaseFile& out) {
   auto& ocean = out.ocean;
-
-  // [sampling] kind = "grid" (the default: [grid] n and length) or "lattice" (points and
-  // generator here, [grid] length only; docs/conventions.md §2.1).
+  auto section = [&](const std::string& name) { return section_of(report, document, name); };
   const Section sampling = section("sampling");
   sampling.allow_only({"kind", "points", "generator"});
   const std::string kind = sampling.string("kind").value_or("grid");
@@ -575,8 +566,6 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
                   "belongs to kind = \"lattice\" (a grid's samples are [grid] n)");
   }
 
-  // [grid] n, length: required (length only for a lattice); a cascade set gives a grid per
-  // [[cascade]] instead.
   const Section grid = section("grid");
   const bool cascade_set = document.contains("cascades") || document.contains("cascade");
   if (cascade_set) {
@@ -628,16 +617,17 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
     ocean.grid.lx = (*length)[0];
     ocean.grid.ly = (*length)[1];
   }
+}
 
-  // [time]
-  const Section time = section("time");
+void read_time(const Section& time, reference::OceanCase& ocean) {
   time.allow_only({"t0", "dt", "frames"});
   ocean.t0 = time.number_or("t0", 0);
   ocean.dt = time.number_or("dt", 0);
   if (auto frames = time.integer("frames")) ocean.frames = checked_int(time, "frames", *frames, 1);
+}
 
-  // [physics]: depth is metres, or "inf" (a TOML inf works too).
-  const Section physics = section("physics");
+// [physics]: depth is metres, or "inf" (a TOML inf works too).
+void read_physics(const Section& physics, reference::OceanCase& ocean) {
   physics.allow_only({"gravity", "depth"});
   ocean.gravity = physics.number_or("gravity", reference::kStandardGravity);
   if (const toml::node* depth = physics.find("depth")) {
@@ -650,10 +640,14 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
       physics.wrong_type("depth", "a number of metres or \"inf\"");
     }
   }
+}
 
-  // [spectrum]: model (required), scale, the model's parameters; phillips may carry the wind
-  // direction here, having no [spreading] model.
-  const Section spectrum = section("spectrum");
+// [spectrum]: model (required), scale, the model's parameters; phillips may carry the wind
+// direction here, having no [spreading] model. [spreading]: model (absent for phillips), its
+// parameters, wind_dir_deg.
+void read_sea(const Reporter& report, const Section& spectrum, const Section& spreading,
+              CaseFile& out) {
+  auto& ocean = out.ocean;
   if (!spectrum.present()) {
     report.fail("missing section [spectrum] (model = \"jonswap\" | …, with its parameters)");
   }
@@ -673,8 +667,6 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
     }
   }
 
-  // [spreading]: model (absent for phillips), its parameters, wind_dir_deg.
-  const Section spreading = section("spreading");
   if (spreading.has("model")) {
     ocean.spreading.model = model_name(spreading, reference::spreading_model_names(), "spreading");
     read_model_parameters(spreading, ocean.spreading.model, {"model", "wind_dir_deg"},
@@ -688,9 +680,9 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
   }
   ocean.wind_dir_deg = spectrum.has("wind_dir_deg") ? *spectrum.number("wind_dir_deg")
                                                     : spreading.number_or("wind_dir_deg", 0);
+}
 
-  // [synthesis]
-  const Section synthesis = section("synthesis");
+void read_synthesis(const Section& synthesis, reference::OceanCase& ocean) {
   synthesis.allow_only({"choppiness", "loop_period", "seed"});
   ocean.choppiness = synthesis.number_or("choppiness", 1);
   ocean.loop_period = synthesis.number_or("loop_period", 0);
@@ -709,13 +701,12 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
       synthesis.wrong_type("seed", "an integer ≥ 0");
     }
   }
+}
 
-  // [input]: the frames' pattern, one channel (or file suffix) per field provided.
-  out.input = read_input(report, section("input"));
-
-  read_cascades(report, document, out);
-  if (out.is_cascade_set()) ocean.grid = out.cascades.front().grid;
-
+// The rules of the case as a whole (OceanCase::validate, each cascade's, and an additive set's
+// bands), reported against the file.
+void validate_case(const Reporter& report, CaseFile& out) {
+  auto& ocean = out.ocean;
   try {
     ocean.validate();
     for (std::size_t c = 0; c < out.cascades.size(); ++c) {
@@ -737,6 +728,34 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
     report.fail(fmt::format("the case's spectrum cannot be evaluated with these parameters: {}",
                             e.what()));
   }
+}
+
+}  // namespace
+
+CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
+  const Reporter report(origin.string());
+  toml::table document;
+  try {
+    document = toml::parse(text, origin.string());
+  } catch (const toml::parse_error& e) {
+    report.fail(e.source(), fmt::format("not valid TOML: {}", e.description()));
+  }
+  check_sections(report, document);
+  auto section = [&](const std::string& name) { return section_of(report, document, name); };
+
+  CaseFile out;
+  out.origin = origin;
+  out.directory = origin.parent_path();
+  read_sampling(report, document, out);
+  read_time(section("time"), out.ocean);
+  read_physics(section("physics"), out.ocean);
+  read_sea(report, section("spectrum"), section("spreading"), out);
+  read_synthesis(section("synthesis"), out.ocean);
+  // [input]: the frames' pattern, one channel (or file suffix) per field provided.
+  out.input = read_input(report, section("input"));
+  read_cascades(report, document, out);
+  if (out.is_cascade_set()) out.ocean.grid = out.cascades.front().grid;
+  validate_case(report, out);
   return out;
 }
 
