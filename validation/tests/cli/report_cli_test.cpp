@@ -46,17 +46,18 @@ class ReportCli : public ::testing::Test {
     root = fs::temp_directory_path() / ("swell_report_test_" + std::to_string(::getpid()));
     fs::remove_all(root);
     fs::create_directories(root);
-    // 9 repetitions (what the U test needs), tiny sizes and minimum times: a few seconds.
+    // 9 repetitions (what the U test needs), tiny sizes, and 20 ms per repetition: an unslowed
+    // null repetition is then ≈ 4000 iterations of ≈ 5 µs, which a scheduler stall cannot lift to
+    // the slowed 2 ms mean (with 2 ms per repetition, Google Benchmark ran a loaded machine's
+    // repetitions with a handful of iterations, and one stall of a few ms mixed the samples).
     const std::string common = " --suite fft --sizes 64:128 --precision fp32 --repetitions 9 "
-                               "--min-time 0.002 --progress none";
+                               "--min-time 0.02 --progress none";
     auto a = swell("bench --impl fftw,null" + common + " --out " + (root / "a").string(), 600);
     ASSERT_EQ(a.exit_code, 0) << a.output;
     auto slow = swell("bench --impl null" + common + " --out " + (root / "slow").string(), 600);
     ASSERT_EQ(slow.exit_code, 0) << slow.output;
     // The same benchmark names, slowed: null spins 2 ms per transform. A repetition of the
-    // unslowed null (≈ 400 iterations of ≈ 5 µs) would have to lose more than 0.8 s to the
-    // scheduler to look as slow; with a 200 µs spin a 0.1 s stall on a loaded 2-core machine is
-    // enough to mix the two samples.
+    // unslowed null would have to lose more than 8 s to the scheduler to look as slow.
     ::setenv("SWELL_NULL_DELAY_US", "2000", 1);
     auto slowed = swell("bench --impl null" + common + " --out " + (root / "slowed").string(), 600);
     ::unsetenv("SWELL_NULL_DELAY_US");
