@@ -16,6 +16,11 @@ struct SpectrumTable {
   std::vector<double> theta;
   // 1-D: S(ω_i), omega.size() values. 2-D: E(ω_i, θ_j) at [i·theta.size() + j].
   std::vector<double> density;
+  // Empty: the values are point densities, interpolated linearly in ω between table points.
+  // Else one width per ω_i (rad/s): the values are band averages over [ω_i − w_i/2, ω_i + w_i/2]
+  // (NDBC's bands), the density is constant over each band and zero outside every band, and
+  // m0 = Σ S_i w_i as the buoy's own figures are.
+  std::vector<double> band_width;
   std::string source;              // the file and the record selected, for messages
   std::vector<std::string> notes;  // what the reader did to it (clipped, renormalized, …)
 
