@@ -1,6 +1,8 @@
 #include "checks/ocean/analysis.hpp"
 #include "swell/validation/stats/statistics.hpp"
 
+#include <numbers>
+
 namespace swell::validation::ocean_analysis {
 namespace {
 
@@ -20,6 +22,67 @@ double unnormalized_spreading_factor(const Analysis& a) {
     total += w.mu;
   }
   return total > 0 ? weighted / total : 0;
+}
+
+// A product of the convention factors engines multiply the energy by, e.g. "× 8 = 2 × 2 × 2".
+struct ConventionProduct {
+  double value = 1;
+  int factors = 0;    // how many factors (the fewer, the likelier)
+  std::string text;   // the product and what each factor is
+};
+
+// Every product of up to four factors from: 2 (unit-variance real and imaginary parts, a √2
+// on the amplitude, both halves of each ±k pair at full variance — or their inverses), 2π
+// (a spectrum in Hz read as rad/s, or the reverse), 16 (Hs² used where Hs²/16 = m0 belongs) and
+// Δk = √(Δkx Δky) (amplitudes with a Δk too few or too many under the root), each with its
+// power.
+std::vector<ConventionProduct> convention_products(double dk) {
+  struct Factor {
+    double value;
+    const char* symbol;
+    const char* meaning;
+  };
+  const Factor factors[] = {
+      {2.0, "2", "2: unit-variance real and imaginary parts (E|ξ|² = 2), a √2 on the amplitude, "
+                 "or both halves of each ±k pair at full variance"},
+      {2 * std::numbers::pi, "2π", "2π: a spectrum per Hz read as per rad/s (S(f) = 2π S(ω))"},
+      {16.0, "16", "16: Hs² where m0 = Hs²/16 belongs"},
+      {1 / dk, "1/Δk", ""},  // its meaning names this grid's Δk: dk_meaning
+  };
+  const std::string dk_meaning =
+      fmt::format("1/Δk = {:.4g}: one √(Δkx Δky) missing from the amplitudes (energy per Δk, "
+                  "not per Δk²)", 1 / dk);
+  std::vector<ConventionProduct> out;
+  const int range[4][2] = {{-3, 3}, {-1, 1}, {-1, 1}, {-2, 2}};
+  for (int a = range[0][0]; a <= range[0][1]; ++a) {
+    for (int b = range[1][0]; b <= range[1][1]; ++b) {
+      for (int c = range[2][0]; c <= range[2][1]; ++c) {
+        for (int d = range[3][0]; d <= range[3][1]; ++d) {
+          const int powers[4] = {a, b, c, d};
+          const int count = std::abs(a) + std::abs(b) + std::abs(c) + std::abs(d);
+          if (count < 2 || count > 4) continue;  // single causes are named on their own
+          ConventionProduct p;
+          p.factors = count;
+          std::string terms, meanings;
+          for (int f = 0; f < 4; ++f) {
+            if (powers[f] == 0) continue;
+            p.value *= std::pow(factors[f].value, powers[f]);
+            for (int i = 0; i < std::abs(powers[f]); ++i) {
+              const std::string symbol = factors[f].symbol;
+              const std::string inverse = f == 3 ? std::string("Δk") : "1/" + symbol;
+              terms += (terms.empty() ? "" : " × ") + (powers[f] > 0 ? symbol : inverse);
+            }
+            meanings += (meanings.empty() ? "" : "; ") +
+                        (f == 3 ? dk_meaning : std::string(factors[f].meaning)) +
+                        (powers[f] < 0 ? " (inverted)" : "");
+          }
+          p.text = fmt::format("× {:.4g} = {}: {}", p.value, terms, meanings);
+          out.push_back(std::move(p));
+        }
+      }
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -62,7 +125,8 @@ Results check_energy(const Analysis& a, OceanCheckReport& report) {
                                                 "scaled to 1 along the mean direction: × {:.3g})",
                                                 factor)});
     }
-    // The candidate nearest the measured ratio (in log) among those its sampling range holds.
+    // The candidate nearest the measured ratio (in log) among those its sampling range holds;
+    // failing a single cause, the product of convention factors with the fewest factors there.
     double best = 1e300;
     std::string meaning;
     for (const auto& [factor, text] : candidates) {
@@ -70,6 +134,19 @@ Results check_energy(const Analysis& a, OceanCheckReport& report) {
       if (factor >= low && factor <= high && distance < best) {
         best = distance;
         meaning = text;
+      }
+    }
+    if (meaning.empty()) {
+      int fewest = 1000;
+      for (const auto& product : convention_products(std::sqrt(dk2))) {
+        if (product.value < low || product.value > high) continue;
+        const double distance = std::abs(std::log(product.value / ratio));
+        if (product.factors < fewest || (product.factors == fewest && distance < best)) {
+          fewest = product.factors;
+          best = distance;
+          meaning = product.text + fmt::format(" (if the engine means it, declare energy_factor = "
+                                               "{:.4g} in the spectrum)", product.value);
+        }
       }
     }
     // A mean level carrying the excess is heave, not a factor on the waves.
