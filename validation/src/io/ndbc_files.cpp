@@ -1,5 +1,5 @@
-// NDBC's spectral-density and summary files, and the band table (ndbc_files.hpp,
-// docs/buoy_fit.md §1 and §4).
+// NDBC's spectral-density, summary and directional-parameter files, and the band table
+// (ndbc_files.hpp, docs/buoy_fit.md §1 and §4, docs/ndbc_directional.md §1).
 #include "swell/validation/io/ndbc_files.hpp"
 
 #include <fmt/format.h>
@@ -18,6 +18,8 @@ namespace swell::validation {
 namespace {
 
 constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
+// NDBC's missing value in the directional-parameter files (printed 999.0, 999.00).
+constexpr double kNdbcMissing = 999.0;
 
 std::vector<std::string> tokens(const std::string& line) {
   std::istringstream in(line);
@@ -72,6 +74,19 @@ BuoyHour parse_time(const std::vector<std::string>& t, std::size_t yy, std::size
   time.day = parse_integer(t[dd], place, "DD", 1, 31);
   time.hour = parse_integer(t[hh], place, "hh", 0, 23);
   return time;
+}
+
+// A band's frequency as printed after its value: "(0.033)", in Hz, > 0.
+double parse_frequency(const std::string& f, const Place& place, std::size_t band) {
+  const std::string field = fmt::format("freq_{}", band);
+  if (f.size() < 3 || f.front() != '(' || f.back() != ')') {
+    throw InvalidInput(place.where(field) + ": '" + f + "' is not a frequency in parentheses");
+  }
+  const double hz = parse_number(f.substr(1, f.size() - 2), place, field, false);
+  if (!(hz > 0)) {
+    throw InvalidInput(place.where(field) + fmt::format(": {} Hz is not positive", hz));
+  }
+  return hz;
 }
 
 std::ifstream open(const std::string& path, const char* what) {
@@ -134,19 +149,8 @@ BuoySpectrumFile read_ndbc_spectral_density(const std::string& path) {
       const std::string name = fmt::format("spec_{}", band);
       const double s = parse_number(t[i], place, name, true);
       if (s < 0) throw InvalidInput(place.where(name) + fmt::format(": {} m²/Hz is negative", s));
-      const std::string& f = t[i + 1];
-      if (f.size() < 3 || f.front() != '(' || f.back() != ')') {
-        throw InvalidInput(place.where(fmt::format("freq_{}", band)) + ": '" + f +
-                           "' is not a frequency in parentheses");
-      }
-      const double hz =
-          parse_number(f.substr(1, f.size() - 2), place, fmt::format("freq_{}", band), false);
-      if (!(hz > 0)) {
-        throw InvalidInput(place.where(fmt::format("freq_{}", band)) +
-                           fmt::format(": {} Hz is not positive", hz));
-      }
       r.density.push_back(s);
-      frequency.push_back(hz);
+      frequency.push_back(parse_frequency(t[i + 1], place, band));
     }
     if (file.records.empty()) {
       file.frequency = frequency;
@@ -226,6 +230,94 @@ std::vector<BuoySummaryRecord> read_ndbc_summary(const std::string& path) {
   }
   if (out.empty()) throw InvalidInput(path + ": no summary records (only headers or blank lines)");
   return out;
+}
+
+const char* ndbc_directional_parameter_name(NdbcDirectionalParameter parameter) {
+  switch (parameter) {
+    case NdbcDirectionalParameter::alpha1: return "alpha1";
+    case NdbcDirectionalParameter::alpha2: return "alpha2";
+    case NdbcDirectionalParameter::r1: return "r1";
+    case NdbcDirectionalParameter::r2: return "r2";
+  }
+  return "?";
+}
+
+NdbcParameterFile read_ndbc_directional_parameter(const std::string& path,
+                                                  NdbcDirectionalParameter parameter) {
+  const std::string name = ndbc_directional_parameter_name(parameter);
+  const bool angle = parameter == NdbcDirectionalParameter::alpha1 ||
+                     parameter == NdbcDirectionalParameter::alpha2;
+  auto in = open(path, (name + " file").c_str());
+  NdbcParameterFile file;
+  file.path = path;
+  file.parameter = parameter;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const auto t = tokens(line);
+    if (t.empty()) continue;
+    if (t[0][0] == '#') {
+      // "#YY  MM DD hh mm alpha1_1 (freq_1) …": the first value column names the parameter.
+      if (t.size() > 5 && t[0] == "#YY") {
+        const std::string& column = t[5];
+        const auto underscore = column.rfind('_');
+        const std::string named = column.substr(0, underscore);
+        if (underscore != std::string::npos && named != name) {
+          throw InvalidInput(fmt::format(
+              "{} line {}: the header names {} values ('{}'), but the file was given as the {} "
+              "file",
+              path, number, named, column, name));
+        }
+      }
+      continue;
+    }
+    const Place place{path, number};
+    if (t.size() < 7 || (t.size() - 5) % 2 != 0) {
+      throw InvalidInput(fmt::format(
+          "{} line {}: {} fields; a record is YY MM DD hh mm followed by pairs '{} (f)'", path,
+          number, t.size(), name));
+    }
+    NdbcParameterRecord r;
+    r.line = number;
+    r.time = parse_time(t, 0, 1, 2, 3, place);
+    r.minute = parse_integer(t[4], place, "mm", 0, 59);
+    std::vector<double> frequency;
+    for (std::size_t i = 5; i < t.size(); i += 2) {
+      const std::size_t band = (i - 5) / 2 + 1;
+      const std::string field = fmt::format("{}_{}", name, band);
+      double v = parse_number(t[i], place, field, true);
+      // NDBC's missing value, printed where a band has no energy (e.g. 999.0, 999.00).
+      if (v == kNdbcMissing) v = kMissing;
+      if (angle && !(std::isnan(v) || (v >= 0 && v <= 360))) {
+        throw InvalidInput(place.where(field) +
+                           fmt::format(": {}° is outside [0, 360] (and not 999, missing)", v));
+      }
+      if (!angle && !(std::isnan(v) || (v >= 0 && v <= 1))) {
+        throw InvalidInput(
+            place.where(field) +
+            fmt::format(": {} is outside [0, 1] (and not 999, missing){}", v,
+                        v > 1 && v <= 100 ? "; NDBC's historical files print r × 100, the "
+                                            "realtime files read here r itself"
+                                          : ""));
+      }
+      r.value.push_back(v);
+      frequency.push_back(parse_frequency(t[i + 1], place, band));
+    }
+    if (file.records.empty()) {
+      file.frequency = frequency;
+    } else if (frequency != file.frequency) {
+      throw InvalidInput(fmt::format(
+          "{} line {}: {} frequencies from {} to {} Hz; the first record (line {}) has {} from "
+          "{} to {} Hz — one file must keep one set of bands",
+          path, number, frequency.size(), frequency.front(), frequency.back(),
+          file.records.front().line, file.frequency.size(), file.frequency.front(),
+          file.frequency.back()));
+    }
+    file.records.push_back(std::move(r));
+  }
+  if (file.records.empty()) {
+    throw InvalidInput(fmt::format("{}: no {} records (only headers or blank lines)", path, name));
+  }
+  return file;
 }
 
 const char* band_convention_name(BandConvention convention) {

@@ -1,12 +1,15 @@
 #pragma once
-// NDBC buoy files, read as printed (docs/buoy_fit.md §1): the spectral-density file
-// (`*.data_spec`: `YY MM DD hh mm Sep_Freq  S1 (f1) S2 (f2) …`, S in m²/Hz, one record an
-// hour), the hourly summary (`*.spec`: WVHT, SwH, SwP, WWH, WWP, SwD, WWD, STEEPNESS, APD, MWD;
-// "MM" means missing), and the bands' widths (NDBC's WPM table). Spectra are stamped :50 and
+// NDBC buoy files, read as printed (docs/buoy_fit.md §1, docs/ndbc_directional.md §1): the
+// spectral-density file (`*.data_spec`: `YY MM DD hh mm Sep_Freq  S1 (f1) S2 (f2) …`, S in
+// m²/Hz, one record an hour), the hourly summary (`*.spec`: WVHT, SwH, SwP, WWH, WWP, SwD, WWD,
+// STEEPNESS, APD, MWD; "MM" means missing), the four directional-parameter files (`*.swdir`,
+// `*.swdir2`, `*.swr1`, `*.swr2`: α1, α2, r1, r2 per band), and the bands' widths (NDBC's WPM
+// table). Spectra are stamped :50 and
 // summaries :40 of the same hour, so records carry the hour and the minute apart.
 //
 // Frequencies in this file are in Hz and directions in degrees, NDBC's units, labelled as such;
-// nothing here converts into swell's conventions (docs/conventions.md).
+// nothing here converts into swell's conventions (docs/conventions.md): the directional reader
+// (ndbc_directional.hpp) and the fit (fit/buoy_spectrum.hpp) do.
 #include <optional>
 #include <string>
 #include <vector>
@@ -86,5 +89,41 @@ struct SpectralBands {
 // InvalidInput for fewer than 2 or non-increasing frequencies.
 SpectralBands spectral_bands(const std::vector<double>& printed_frequency,
                              std::optional<BandConvention> convention = std::nullopt);
+
+// The four directional-parameter files of NDBC's realtime directional products
+// (https://www.ndbc.noaa.gov/faq/measdes.shtml): per band, the mean direction α1 and the
+// principal direction α2 (degrees, nautical: the direction the waves come FROM, clockwise from
+// true north; α2 is defined modulo 180°), and the normalized Fourier amplitudes r1 and r2 in
+// [0, 1]. NDBC's historical yearly files (`…j2019.txt`, `…k2019.txt`) print r1, r2 times 100;
+// the realtime files read here print them as they are, which the range check enforces.
+enum class NdbcDirectionalParameter { alpha1, alpha2, r1, r2 };
+// "alpha1", "alpha2", "r1", "r2": the column names of the files' headers (alpha1_1, …).
+const char* ndbc_directional_parameter_name(NdbcDirectionalParameter parameter);
+
+struct NdbcParameterRecord {
+  BuoyHour time;
+  int minute = 0;
+  // Per band, as printed; NaN where the file says "MM" or NDBC's missing value 999 (printed
+  // 999.0 or 999.00, out of every parameter's range; NDBC prints it where the band has no energy).
+  std::vector<double> value;
+  int line = 0;  // 1-based line in the file
+};
+
+struct NdbcParameterFile {
+  std::string path;
+  NdbcDirectionalParameter parameter = NdbcDirectionalParameter::alpha1;
+  std::vector<double> frequency;  // Hz, the band centres as printed
+  std::vector<NdbcParameterRecord> records;  // in file order (NDBC writes newest first)
+};
+
+// Reads one directional-parameter file: `YY MM DD hh mm v1 (f1) v2 (f2) …`, lines starting with
+// '#' are headers. Where a header names its columns (`alpha1_1 (freq_1) …`), the name must be
+// `parameter`'s, so that files given in the wrong order are caught. Throws InvalidInput naming
+// the file, the line and the field (alpha1_7, r2_12, …) for a file that cannot be opened, a
+// malformed value, a value outside its range (α in [0, 360], r in [0, 1]: a file of r × 100
+// is named as such), a record whose frequencies differ from the first one's, or a file without
+// records.
+NdbcParameterFile read_ndbc_directional_parameter(const std::string& path,
+                                                  NdbcDirectionalParameter parameter);
 
 }  // namespace swell::validation
