@@ -289,6 +289,19 @@ reference::SpectrumTable read_netcdf(const SpectrumTableDeclaration& d) {
     }
   }
   const double turn = d.direction_unit == "deg" ? 360.0 : 2 * kPi;
+  // The declared unit against the values: radians never exceed 2π, and a full circle of
+  // directions in degrees spans far more than 2π.
+  const auto [lowest, highest] = std::minmax_element(direction.begin(), direction.end());
+  if (nd > 0 && d.direction_unit == "rad" && *highest - *lowest > 2 * kPi + 1e-9) {
+    throw InvalidInput(fmt::format("{}: direction_unit = \"rad\", but {} spans {:g} to {:g}, more "
+                                   "than 2π: are the directions in degrees (direction_unit = "
+                                   "\"deg\")?", where, d.direction_variable, *lowest, *highest));
+  }
+  if (nd > 4 && d.direction_unit == "deg" && *highest - *lowest <= 2 * kPi + 1e-9) {
+    throw InvalidInput(fmt::format("{}: direction_unit = \"deg\", but {} spans only {:g} to {:g}: "
+                                   "{} directions within 2π degrees are radians (direction_unit = "
+                                   "\"rad\")", where, d.direction_variable, *lowest, *highest, nd));
+  }
   // Going once round the circle in the listed order, each step taken counter-clockwise in
   // (0, turn): one turn in all when the list ascends cyclically, n − 1 turns when it descends.
   double up = 0;

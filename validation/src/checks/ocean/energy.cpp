@@ -118,6 +118,12 @@ Results check_energy(const Analysis& a, OceanCheckReport& report) {
         {1 / dk2, fmt::format("amplitudes without Δkx Δky (the energy then scales with the patch: "
                               "× {:.4g} here)", 1 / dk2)},
         {std::pow(g, -1.5), "α√g instead of α g² in the spectrum (× g^(−3/2))"},
+        {2 * std::numbers::pi, "× 2π: a spectrum per Hz read as per rad/s (S(f) = 2π S(ω); a table "
+                               "whose frequency_unit or density_unit is declared wrong)"},
+        {1 / (2 * std::numbers::pi), "× 1/(2π): a spectrum per rad/s read as per Hz (a table whose "
+                                     "frequency_unit or density_unit is declared wrong)"},
+        {16.0, "× 16: Hs² where m0 = Hs²/16 belongs"},
+        {1 / 16.0, "× 1/16: m0 divided by 16 twice (Hs²/256)"},
     };
     auto candidates = known;
     if (const double factor = unnormalized_spreading_factor(a); factor > 0) {
