@@ -79,6 +79,15 @@ nlohmann::json moments_json(const reference::SeaState& s) {
           {"omega_p", json_number(s.omega_p)}};
 }
 
+// " (diverges: S ~ ω⁻⁵ tail)" for the tail exponent p (superscript digits where p is whole).
+std::string tail_note(double p) {
+  if (p != std::floor(p) || p < 0 || p > 99) return fmt::format(" (diverges: S ~ ω^−{:g} tail)", p);
+  static const char* const kDigits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  std::string exponent = "⁻";
+  for (char c : std::to_string(static_cast<int>(p))) exponent += kDigits[c - '0'];
+  return " (diverges: S ~ ω" + exponent + " tail)";
+}
+
 struct SpectrumOptions {
   std::string model;
   std::map<std::string, double> numbers;
@@ -132,13 +141,13 @@ int run_spectrum(const SpectrumOptions& o) {
   }
   const auto& m = state.moments;
   fmt::print("\nmoments of the whole spectrum (angular frequency):\n"
-             "  m_1 = {:.9g} m²·s/rad   m0 = {:.9g} m²   m1 = {:.9g} m²·rad/s\n"
+             "  m_1 = {:.9g} m²·s/rad{}   m0 = {:.9g} m²   m1 = {:.9g} m²·rad/s\n"
              "  m2 = {:.9g} m²·(rad/s)²   m4 = {:.9g} m²·(rad/s)⁴{}\n"
              "  Hs = {:.6g} m   Tp = {:.6g} s   Tm01 = {:.6g} s   Tm02 = {:.6g} s   Te = {:.6g} s\n"
              "  ε4 = {:.6g}   ν = {:.6g}\n",
-             m.m_minus1, m.m0, m.m1, m.m2, m.m4,
-             std::isinf(m.m4) ? " (diverges: S ~ ω⁻⁵ tail)" : "", state.hs, state.tp, state.tm01,
-             state.tm02, state.te, state.epsilon4, state.nu);
+             m.m_minus1, std::isinf(m.m_minus1) ? " (diverges: S(0⁺) > 0)" : "", m.m0, m.m1, m.m2,
+             m.m4, std::isinf(m.m4) ? tail_note(spectrum->tail_exponent()) : "", state.hs,
+             state.tp, state.tm01, state.tm02, state.te, state.epsilon4, state.nu);
   return 0;
 }
 
@@ -169,8 +178,8 @@ Action add_spectrum_command(CLI::App& app) {
   app.add_option("--omega", o->omega, "frequencies in rad/s: a:b:n or w1,w2,… (default ωp/4:4ωp:16)");
   app.add_option("--json", o->json, "write JSON to FILE, or - for standard output");
   app.footer("A parameter a model does not take is an error. JSON: {model, params, omega, S, "
-             "moments: {m0, m1, m2, m4, m_1, hs, tp, tm01, tm02, te, …}}; m4 of an ω⁻⁵ tail "
-             "diverges and is null.");
+             "moments: {m0, m1, m2, m4, m_1, hs, tp, tm01, tm02, te, …}}; a moment that "
+             "diverges (m4 of an ω⁻⁵ tail, m_1 of a spectrum with S(0⁺) > 0) is null.");
   return [o] { return run_spectrum(*o); };
 }
 

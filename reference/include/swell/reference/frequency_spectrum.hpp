@@ -2,6 +2,8 @@
 // One-sided frequency spectra S(ω) in m²·s/rad of angular frequency ω in rad/s
 // (docs/conventions.md §Spectra). Every model is immutable once built; factories validate their
 // arguments and throw swell::InvalidInput naming the parameter that is wrong.
+#include <array>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,6 +26,9 @@ class FrequencySpectrum {
   virtual double peak_omega() const = 0;
   // p such that S(ω) ~ ω^(−p) as ω → ∞ (∞ for a faster decay). m_n is finite iff n < p − 1.
   virtual double tail_exponent() const = 0;
+  // q such that S(ω) ~ ω^q as ω → 0⁺ (∞ for a faster decay, as exp(−b ω⁻⁴)). A moment over a
+  // band from ω = 0 is finite iff n > −q − 1: S(0⁺) > 0 (q = 0) makes m−1 diverge.
+  virtual double low_frequency_exponent() const { return std::numeric_limits<double>::infinity(); }
   // Frequencies where S changes character (peak, branch boundaries of a piecewise law);
   // quadrature splits its interval there.
   virtual std::vector<double> breakpoints() const { return {peak_omega()}; }
