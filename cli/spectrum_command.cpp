@@ -81,6 +81,15 @@ nlohmann::json moments_json(const reference::SeaState& s) {
           {"omega_p", json_number(s.omega_p)}};
 }
 
+// " (diverges: S ~ ω⁻⁵ tail)" for the tail exponent p (superscript digits where p is whole).
+std::string tail_note(double p) {
+  if (p != std::floor(p) || p < 0 || p > 99) return fmt::format(" (diverges: S ~ ω^−{:g} tail)", p);
+  static const char* const kDigits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  std::string exponent = "⁻";
+  for (char c : std::to_string(static_cast<int>(p))) exponent += kDigits[c - '0'];
+  return " (diverges: S ~ ω" + exponent + " tail)";
+}
+
 struct SpectrumOptions {
   std::string case_path;
   std::string model;
@@ -100,15 +109,16 @@ std::string parameter_text(const std::vector<reference::Parameter>& parameters) 
   return out;
 }
 
-void print_moments(const reference::SeaState& state, const std::string& indent) {
+void print_moments(const reference::SeaState& state, const std::string& indent,
+                   double tail_exponent) {
   const auto& m = state.moments;
-  fmt::print("{0}m_1 = {1:.9g} m²·s/rad   m0 = {2:.9g} m²   m1 = {3:.9g} m²·rad/s\n"
-             "{0}m2 = {4:.9g} m²·(rad/s)²   m4 = {5:.9g} m²·(rad/s)⁴{6}\n"
-             "{0}Hs = {7:.6g} m   Tp = {8:.6g} s   Tm01 = {9:.6g} s   Tm02 = {10:.6g} s   Te = {11:.6g} s\n"
-             "{0}ε4 = {12:.6g}   ν = {13:.6g}\n",
-             indent, m.m_minus1, m.m0, m.m1, m.m2, m.m4,
-             std::isinf(m.m4) ? " (diverges: S ~ ω⁻⁵ tail)" : "", state.hs, state.tp, state.tm01,
-             state.tm02, state.te, state.epsilon4, state.nu);
+  fmt::print("{0}m_1 = {1:.9g} m²·s/rad{2}   m0 = {3:.9g} m²   m1 = {4:.9g} m²·rad/s\n"
+             "{0}m2 = {5:.9g} m²·(rad/s)²   m4 = {6:.9g} m²·(rad/s)⁴{7}\n"
+             "{0}Hs = {8:.6g} m   Tp = {9:.6g} s   Tm01 = {10:.6g} s   Tm02 = {11:.6g} s   Te = {12:.6g} s\n"
+             "{0}ε4 = {13:.6g}   ν = {14:.6g}\n",
+             indent, m.m_minus1, std::isinf(m.m_minus1) ? " (diverges: S(0⁺) > 0)" : "", m.m0, m.m1,
+             m.m2, m.m4, std::isinf(m.m4) ? tail_note(tail_exponent) : "", state.hs, state.tp,
+             state.tm01, state.tm02, state.te, state.epsilon4, state.nu);
 }
 
 // A case's sea: each component's omnidirectional S(ω) (its energy factor and fade applied) and
@@ -180,10 +190,10 @@ int run_case_spectrum(const SpectrumOptions& o) {
   }
   for (std::size_t i = 0; i < parts.size(); ++i) {
     fmt::print("\nmoments of component {} (angular frequency):\n", i);
-    print_moments(states[i], "  ");
+    print_moments(states[i], "  ", parts[i]->omnidirectional().tail_exponent());
   }
   fmt::print("\nmoments of the sea, the sum of its components (angular frequency):\n");
-  print_moments(sea_state, "  ");
+  print_moments(sea_state, "  ", total.tail_exponent());
   return 0;
 }
 
@@ -236,7 +246,7 @@ int run_spectrum(const SpectrumOptions& o) {
     fmt::print("{:>14.6g}  {:>16.9g}\n", omegas[i], values[i]);
   }
   fmt::print("\nmoments of the whole spectrum (angular frequency):\n");
-  print_moments(state, "  ");
+  print_moments(state, "  ", spectrum->tail_exponent());
   return 0;
 }
 
@@ -268,12 +278,12 @@ Action add_spectrum_command(CLI::App& app) {
   app.add_option("--omega", o->omega, "frequencies in rad/s: a:b:n or w1,w2,… (default ωp/4:4ωp:16)");
   app.add_option("--json", o->json, "write JSON to FILE, or - for standard output");
   app.footer("A parameter a model does not take is an error. JSON: {model, params, omega, S, "
-             "moments: {m0, m1, m2, m4, m_1, hs, tp, tm01, tm02, te, …}}; m4 of an ω⁻⁵ tail "
-             "diverges and is null. With --case: the omnidirectional S(ω) of each component of "
-             "the case's sea (its energy_factor and short_wave_fade applied) and of the sea, "
-             "their sum, with the moments of each; JSON {case, description, omega, components: "
-             "[{model, params, spreading, wind_dir_deg, energy_factor, short_wave_fade, S, "
-             "moments}], S, moments}.");
+             "moments: {m0, m1, m2, m4, m_1, hs, tp, tm01, tm02, te, …}}; a moment that "
+             "diverges (m4 of an ω⁻⁵ tail, m_1 of a spectrum with S(0⁺) > 0) is null. With "
+             "--case: the omnidirectional S(ω) of each component of the case's sea (its "
+             "energy_factor and short_wave_fade applied) and of the sea, their sum, with the "
+             "moments of each; JSON {case, description, omega, components: [{model, params, "
+             "spreading, wind_dir_deg, energy_factor, short_wave_fade, S, moments}], S, moments}.");
   return [o] { return run_spectrum(*o); };
 }
 
