@@ -11,6 +11,12 @@
 namespace swell::reference {
 namespace {
 
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
 // Ψ times a cascade's band weight w(|k|)². Its omnidirectional spectrum stays the sea's: the
 // weight depends on |k| alone, so a cascade's S_c(ω) would be w(k(ω))² S(ω), but what reads it
 // (the validity rule's m0, Tp) wants the sea.
@@ -130,8 +136,8 @@ DirectionalSpectrumPtr OceanCase::component_spectrum(const SeaComponent& c) cons
                                c.short_wave_fade);
     }
     if (c.spreading.model.empty()) {
-      throw InvalidInput("a 1-D spectrum table S(f) needs a spreading model (cos2s, mitsuyasu, "
-                         "hasselmann, donelan-banner, cos-power)");
+      throw InvalidInput("a 1-D spectrum table S(f) needs a spreading model (" +
+                         join_names(spreading_model_names()) + ")");
     }
     const auto frequency = table_frequency_spectrum(c.table);
     return adjusted_spectrum(
@@ -150,10 +156,17 @@ DirectionalSpectrumPtr OceanCase::component_spectrum(const SeaComponent& c) cons
   }
   if (c.spreading.model.empty()) {
     throw InvalidInput("spectrum '" + c.spectrum.model +
-                       "' needs a spreading model (cos2s, mitsuyasu, hasselmann, "
-                       "donelan-banner, cos-power)");
+                       "' needs a spreading model (" + join_names(spreading_model_names()) + ")");
   }
-  const auto spread = make_spreading(c.spreading, frequency->peak_omega());
+  // Horvath's wave age comes from the case's wind (its spectrum's u10) when the spreading does
+  // not give one: U10/cp at the peak under the case's dispersion.
+  ModelSpec spreading_spec = c.spreading;
+  if (spreading_spec.model == "horvath" && !spreading_spec.numbers.count("wave_age") &&
+      c.spectrum.numbers.count("u10")) {
+    spreading_spec.numbers["wave_age"] =
+        Horvath::wave_age(c.spectrum.numbers.at("u10"), frequency->peak_omega(), dispersion());
+  }
+  const auto spread = make_spreading(spreading_spec, frequency->peak_omega());
   return adjusted_spectrum(
       SpreadSpectrum::create(frequency, spread, dispersion(), toward),
       c.energy_factor, c.short_wave_fade);
