@@ -1066,7 +1066,8 @@ std::string case_toml(const CaseFile& case_file) {
   const bool composite = components.size() > 1;
   for (std::size_t i = 0; i < components.size(); ++i) {
     const auto& part = components[i];
-    const bool direction_in_spectrum = part.spreading.model.empty();
+    // The direction of a sea without a spreading model: phillips's own; a 2-D table has none.
+    const bool direction_in_spectrum = part.spreading.model.empty() && !part.table;
     out += fmt::format("{}\nmodel = {}\n", composite ? "[[spectrum]]" : "[spectrum]",
                        toml_string(part.spectrum.model));
     if (i == 0) {
@@ -1084,7 +1085,7 @@ std::string case_toml(const CaseFile& case_file) {
       out += fmt::format("wind_dir_deg = {}\n", toml_number(part.wind_dir_deg));
     }
     out += "\n";
-    if (!direction_in_spectrum) {
+    if (!part.spreading.model.empty()) {
       out += fmt::format("{}\nmodel = {}\n", composite ? "[spectrum.spreading]" : "[spreading]",
                          toml_string(part.spreading.model));
       write_parameters(out, part.spreading);

@@ -734,5 +734,7 @@ TEST(CaseFileComposite, MistakesAreNamedWithTheComponent) {
   // A component's parameters are its model's.
   expect_refused(replace("tp = 14.0", "tp = 14.0\ngamma = 2.0"), {"bad.toml", "spectrum 1", "gamma"});
   // spreading must be a table.
-  expect_refused(replace("energy_factor = 2.0", "spreading = 3.0"), {"bad.toml", "spectrum 1", "spreading"});
+  expect_refused(replace("[spectrum.spreading]\nmodel = \"cos2s\"\ns = 40.0\nwind_dir_deg = 75.0",
+                         "spreading = 3.0"),
+                 {"bad.toml", "spectrum 1", "spreading"});
 }
