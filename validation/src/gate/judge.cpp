@@ -61,16 +61,23 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
   // A tabulated sea: what its reader did, and how much of the table the sampling carries (the
   // rest, beyond the grid's band of |k|, is judged as absent).
   bool tabulated = false;
-  for (const auto& c : case_file.ocean.components()) {
-    if (!c.table) continue;
+  const auto components = case_file.ocean.components();
+  for (std::size_t i = 0; i < components.size(); ++i) {
+    if (!components[i].table) continue;
     tabulated = true;
-    for (const auto& note : c.table->notes) report.notes.push_back(c.table->source + ": " + note);
+    const std::string who = components.size() > 1
+                                ? fmt::format("component {} ({}): ", i, components[i].spectrum.model)
+                                : components[i].spectrum.model + ": ";
+    for (const auto& note : components[i].table->notes) report.notes.push_back(who + note);
   }
   if (tabulated && !case_file.ocean.is_lattice()) {
+    // Σ Ψ Δk² over the grid against ∫∫ Ψ dk: below 100 % where the table reaches beyond the
+    // grid's band of |k|; a band-averaged table's steps can put it a little above.
     const auto summary = reference::summarize_sampling(case_file.ocean, &travelling_power);
     report.notes.push_back(fmt::format(
-        "the grid carries {:.2f} % of the sea's m0 ({:.4g} of {:.4g} m²); the rest lies beyond its "
-        "band of |k| ({:.3g} to {:.3g} rad/m) and is judged as absent",
+        "the grid's wave vectors carry {:.2f} % of the sea's m0 (Σ Ψ Δk² = {:.4g} m², ∫∫ Ψ dk = "
+        "{:.4g} m²; the grid's band of |k| is {:.3g} to {:.3g} rad/m, and what lies beyond it is "
+        "judged as absent)",
         100 * summary.fraction, summary.m0_on_grid, summary.m0, summary.k_min, summary.k_max));
   }
 
