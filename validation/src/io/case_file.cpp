@@ -679,6 +679,11 @@ void read_table(const Section& spectrum, const fs::path& directory, reference::S
   SpectrumTableDeclaration d;
   const std::string file = spectrum.required_string("file", "the table's path, relative to the case file");
   d.file = fs::path(file).is_absolute() ? fs::path(file) : directory / file;
+  // A regular file only: a device or a pipe could be read without end.
+  std::error_code error;
+  if (!fs::is_regular_file(d.file, error)) {
+    spectrum.fail("file", fmt::format("{}: no such file (or not a regular file)", d.file.string()));
+  }
   c.spectrum.choices["file"] = fs::absolute(d.file).lexically_normal().string();
   for (const auto& key : choices) {
     if (const auto value = spectrum.string(key)) c.spectrum.choices[key] = *value;
@@ -724,6 +729,11 @@ void read_ndbc(const Section& spectrum, const fs::path& directory, reference::Se
     const std::string given = spectrum.required_string(key, "the path of the station's ." +
                                                                 std::string(key) + " file");
     const fs::path path = fs::path(given).is_absolute() ? fs::path(given) : directory / given;
+    // A regular file only: a device or a pipe could be read without end.
+    std::error_code error;
+    if (!fs::is_regular_file(path, error)) {
+      spectrum.fail(key, fmt::format("{}: no such file (or not a regular file)", path.string()));
+    }
     *into = fs::absolute(path).lexically_normal().string();
     c.spectrum.choices[key] = *into;
   }
