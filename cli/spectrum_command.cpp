@@ -1,5 +1,6 @@
-// swell spectrum --model M [params] [--omega a:b:n | --omega w1,w2,...] [--json FILE|-]
-// Prints S(ω) at the requested frequencies and the moments of the whole spectrum.
+// swell spectrum --model M [params] | --case FILE  [--omega a:b:n | --omega w1,w2,...] [--json FILE|-]
+// Prints S(ω) at the requested frequencies and the moments of the whole spectrum; for a case,
+// each component's and the sea's (their sum).
 #include <fmt/format.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "swell/reference/errors.hpp"
 #include "swell/reference/model_factory.hpp"
 #include "swell/reference/moments.hpp"
+#include "swell/validation/io/case_file.hpp"
 #include "swell/validation/results/report.hpp"
 
 namespace swell::cli {
@@ -79,7 +81,17 @@ nlohmann::json moments_json(const reference::SeaState& s) {
           {"omega_p", json_number(s.omega_p)}};
 }
 
+// " (diverges: S ~ ω⁻⁵ tail)" for the tail exponent p (superscript digits where p is whole).
+std::string tail_note(double p) {
+  if (p != std::floor(p) || p < 0 || p > 99) return fmt::format(" (diverges: S ~ ω^−{:g} tail)", p);
+  static const char* const kDigits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  std::string exponent = "⁻";
+  for (char c : std::to_string(static_cast<int>(p))) exponent += kDigits[c - '0'];
+  return " (diverges: S ~ ω" + exponent + " tail)";
+}
+
 struct SpectrumOptions {
+  std::string case_path;
   std::string model;
   std::map<std::string, double> numbers;
   std::map<std::string, std::string> choices;
@@ -88,7 +100,115 @@ struct SpectrumOptions {
   std::string json;
 };
 
+std::string parameter_text(const std::vector<reference::Parameter>& parameters) {
+  std::string out;
+  for (const auto& p : parameters) {
+    out += fmt::format("{}{} = {:.6g}{}", out.empty() ? "" : ", ", p.name, p.value,
+                       p.unit.empty() ? "" : " " + p.unit);
+  }
+  return out;
+}
+
+void print_moments(const reference::SeaState& state, const std::string& indent,
+                   double tail_exponent) {
+  const auto& m = state.moments;
+  fmt::print("{0}m_1 = {1:.9g} m²·s/rad{2}   m0 = {3:.9g} m²   m1 = {4:.9g} m²·rad/s\n"
+             "{0}m2 = {5:.9g} m²·(rad/s)²   m4 = {6:.9g} m²·(rad/s)⁴{7}\n"
+             "{0}Hs = {8:.6g} m   Tp = {9:.6g} s   Tm01 = {10:.6g} s   Tm02 = {11:.6g} s   Te = {12:.6g} s\n"
+             "{0}ε4 = {13:.6g}   ν = {14:.6g}\n",
+             indent, m.m_minus1, std::isinf(m.m_minus1) ? " (diverges: S(0⁺) > 0)" : "", m.m0, m.m1,
+             m.m2, m.m4, std::isinf(m.m4) ? tail_note(tail_exponent) : "", state.hs, state.tp,
+             state.tm01, state.tm02, state.te, state.epsilon4, state.nu);
+}
+
+// A case's sea: each component's omnidirectional S(ω) (its energy factor and fade applied) and
+// the sum, whose moments are the sea's.
+int run_case_spectrum(const SpectrumOptions& o) {
+  const auto case_file = validation::read_case_file(o.case_path);
+  const auto& ocean = case_file.ocean;
+  const auto components = ocean.components();
+  std::vector<reference::DirectionalSpectrumPtr> parts;
+  for (const auto& c : components) parts.push_back(ocean.component_spectrum(c));
+  const auto sea = ocean.sea_spectrum();
+  const auto& total = sea->omnidirectional();
+  const double omega_p = total.peak_omega();
+  const auto omegas = o.omega.empty()
+                          ? parse_omega(fmt::format("{:.17g}:{:.17g}:16", 0.25 * omega_p, 4 * omega_p))
+                          : parse_omega(o.omega);
+  std::vector<std::vector<double>> values(parts.size() + 1);
+  for (double w : omegas) {
+    for (std::size_t i = 0; i < parts.size(); ++i) values[i].push_back(parts[i]->omnidirectional()(w));
+    values.back().push_back(total(w));
+  }
+  std::vector<reference::SeaState> states;
+  for (const auto& p : parts) states.push_back(reference::sea_state(p->omnidirectional()));
+  const auto sea_state = reference::sea_state(total);
+
+  if (!o.json.empty()) {
+    nlohmann::json list = nlohmann::json::array();
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      const auto& c = components[i];
+      nlohmann::json params = nlohmann::json::object();
+      for (const auto& p : parts[i]->omnidirectional().parameters()) params[p.name] = json_number(p.value);
+      nlohmann::json spreading = nullptr;
+      if (!c.spreading.model.empty()) {
+        spreading = {{"model", c.spreading.model}, {"params", c.spreading.numbers}};
+      }
+      list.push_back({{"model", c.spectrum.model}, {"params", params}, {"spreading", spreading},
+                      {"wind_dir_deg", c.wind_dir_deg}, {"energy_factor", c.energy_factor},
+                      {"short_wave_fade", c.short_wave_fade}, {"S", values[i]},
+                      {"moments", moments_json(states[i])}});
+    }
+    nlohmann::json document = {{"case", o.case_path},
+                               {"description", ocean.describe()},
+                               {"omega", omegas},
+                               {"components", list},
+                               {"S", values.back()},
+                               {"moments", moments_json(sea_state)},
+                               {"units", {{"omega", "rad/s"}, {"S", "m^2 s/rad"},
+                                          {"m_n", "m^2 (rad/s)^n"}, {"periods", "s"}}}};
+    write_json(o.json, document);
+    if (o.json == "-") return 0;
+  }
+
+  fmt::print("case: {}\n{}\n\n", o.case_path, ocean.describe());
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const auto& c = components[i];
+    fmt::print("component {}: {} ({}){}\n", i, c.spectrum.model,
+               parameter_text(parts[i]->omnidirectional().parameters()),
+               c.spreading.model.empty() ? std::string()
+                                         : fmt::format(", spreading {}, toward {:g}°",
+                                                       c.spreading.model, c.wind_dir_deg));
+  }
+  fmt::print("\n{:>14}", "omega [rad/s]");
+  for (std::size_t i = 0; i < parts.size(); ++i) fmt::print("  {:>16}", fmt::format("S{} [m²·s/rad]", i));
+  fmt::print("  {:>16}\n", "sea [m²·s/rad]");
+  for (std::size_t k = 0; k < omegas.size(); ++k) {
+    fmt::print("{:>14.6g}", omegas[k]);
+    for (const auto& column : values) fmt::print("  {:>16.9g}", column[k]);
+    fmt::print("\n");
+  }
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    fmt::print("\nmoments of component {} (angular frequency):\n", i);
+    print_moments(states[i], "  ", parts[i]->omnidirectional().tail_exponent());
+  }
+  fmt::print("\nmoments of the sea, the sum of its components (angular frequency):\n");
+  print_moments(sea_state, "  ", total.tail_exponent());
+  return 0;
+}
+
 int run_spectrum(const SpectrumOptions& o) {
+  if (!o.case_path.empty()) {
+    if (!o.model.empty()) throw InvalidInput("give --model or --case, not both");
+    for (const auto& [name, option] : o.number_options) {
+      if (option->count()) throw InvalidInput(flag_of(name) + " with --case: the case file gives every parameter");
+    }
+    for (const auto& [name, option] : o.choice_options) {
+      if (option->count()) throw InvalidInput(flag_of(name) + " with --case: the case file gives every parameter");
+    }
+    return run_case_spectrum(o);
+  }
+  if (o.model.empty()) throw InvalidInput("give --model (a spectrum model) or --case FILE (a case file's sea)");
   ModelSpec spec{o.model, {}, {}};
   for (const auto& [name, option] : o.number_options) {
     if (option->count()) spec.numbers[name] = o.numbers.at(name);
@@ -120,25 +240,13 @@ int run_spectrum(const SpectrumOptions& o) {
     if (o.json == "-") return 0;
   }
 
-  std::string params;
-  for (const auto& p : spectrum->parameters()) {
-    params += fmt::format("{}{} = {:.6g}{}", params.empty() ? "" : ", ", p.name, p.value,
-                          p.unit.empty() ? "" : " " + p.unit);
-  }
-  fmt::print("model: {}\nparameters: {}\n\n{:>14}  {:>16}\n", spectrum->name(), params,
-             "omega [rad/s]", "S [m²·s/rad]");
+  fmt::print("model: {}\nparameters: {}\n\n{:>14}  {:>16}\n", spectrum->name(),
+             parameter_text(spectrum->parameters()), "omega [rad/s]", "S [m²·s/rad]");
   for (std::size_t i = 0; i < omegas.size(); ++i) {
     fmt::print("{:>14.6g}  {:>16.9g}\n", omegas[i], values[i]);
   }
-  const auto& m = state.moments;
-  fmt::print("\nmoments of the whole spectrum (angular frequency):\n"
-             "  m_1 = {:.9g} m²·s/rad   m0 = {:.9g} m²   m1 = {:.9g} m²·rad/s\n"
-             "  m2 = {:.9g} m²·(rad/s)²   m4 = {:.9g} m²·(rad/s)⁴{}\n"
-             "  Hs = {:.6g} m   Tp = {:.6g} s   Tm01 = {:.6g} s   Tm02 = {:.6g} s   Te = {:.6g} s\n"
-             "  ε4 = {:.6g}   ν = {:.6g}\n",
-             m.m_minus1, m.m0, m.m1, m.m2, m.m4,
-             std::isinf(m.m4) ? " (diverges: S ~ ω⁻⁵ tail)" : "", state.hs, state.tp, state.tm01,
-             state.tm02, state.te, state.epsilon4, state.nu);
+  fmt::print("\nmoments of the whole spectrum (angular frequency):\n");
+  print_moments(state, "  ", spectrum->tail_exponent());
   return 0;
 }
 
@@ -147,9 +255,10 @@ int run_spectrum(const SpectrumOptions& o) {
 Action add_spectrum_command(CLI::App& app) {
   auto o = std::make_shared<SpectrumOptions>();
   const auto models = reference::frequency_model_names();
-  app.add_option("--model", o->model, "spectrum model")
-      ->required()
+  app.add_option("--model", o->model, "spectrum model (or --case)")
       ->check(model_name_check(reference::ModelKind::spectrum));
+  app.add_option("--case", o->case_path,
+                 "a case file (docs/case_files.md): each component of its sea and their sum");
   // One flag per parameter any model takes; each model rejects the ones it does not take.
   std::set<std::string> seen;
   for (const auto& model : models) {
@@ -169,8 +278,12 @@ Action add_spectrum_command(CLI::App& app) {
   app.add_option("--omega", o->omega, "frequencies in rad/s: a:b:n or w1,w2,… (default ωp/4:4ωp:16)");
   app.add_option("--json", o->json, "write JSON to FILE, or - for standard output");
   app.footer("A parameter a model does not take is an error. JSON: {model, params, omega, S, "
-             "moments: {m0, m1, m2, m4, m_1, hs, tp, tm01, tm02, te, …}}; m4 of an ω⁻⁵ tail "
-             "diverges and is null.");
+             "moments: {m0, m1, m2, m4, m_1, hs, tp, tm01, tm02, te, …}}; a moment that "
+             "diverges (m4 of an ω⁻⁵ tail, m_1 of a spectrum with S(0⁺) > 0) is null. With "
+             "--case: the omnidirectional S(ω) of each component of the case's sea (its "
+             "energy_factor and short_wave_fade applied) and of the sea, their sum, with the "
+             "moments of each; JSON {case, description, omega, components: [{model, params, "
+             "spreading, wind_dir_deg, energy_factor, short_wave_fade, S, moments}], S, moments}.");
   return [o] { return run_spectrum(*o); };
 }
 

@@ -201,13 +201,36 @@ validation::CaseFile build_case(const SynthOptions& o) {
     }
   }
 
+  // A composite or tabulated sea is the case file's to say: the model flags set the one
+  // component of a parametric sea.
+  if (ocean.is_composite() || ocean.table) {
+    std::vector<std::string> given;
+    for (const char* flag : {"--model", "--spreading", "--wind-dir"}) {
+      if (o.has(flag)) given.push_back(flag);
+    }
+    for (const auto& [name, option] : o.number_options) {
+      if (option->count()) given.push_back(flag_of(name));
+    }
+    for (const auto& [name, option] : o.choice_options) {
+      if (option->count()) given.push_back(flag_of(name));
+    }
+    if (!given.empty()) {
+      throw InvalidInput(fmt::format(
+          "{} with --case {}: the case's sea is {}; its models and parameters are the case file's "
+          "to change ([[spectrum]] tables)", given.front(), o.case_file,
+          ocean.is_composite() ? fmt::format("composite ({} components)", ocean.more_components.size() + 1)
+                               : "a table (model = \"" + ocean.spectrum.model + "\")"));
+    }
+  }
   // Models: --model replaces the spectrum; phillips carries its own directionality.
   if (o.has("--model")) {
     ocean.spectrum = ModelSpec{o.model, {}, {}};
     if (o.model == "phillips" && !o.has("--spreading")) ocean.spreading = ModelSpec{};
   }
   if (o.has("--spreading")) ocean.spreading = ModelSpec{o.spreading, {}, {}};
-  const bool default_spreading = ocean.spectrum.model != "phillips" && ocean.spreading.model.empty();
+  // A 2-D table carries its own directions, as phillips does.
+  const bool default_spreading = ocean.spectrum.model != "phillips" && ocean.spreading.model.empty() &&
+                                 !(ocean.table && ocean.table->is_directional());
   if (default_spreading) ocean.spreading.model = kDefaultSpreading;
 
   // Parameters go to whichever model takes them.

@@ -73,5 +73,8 @@ find_package(fmt QUIET)
 swell_require("fmt" libfmt-dev fmt_FOUND)
 pkg_check_modules(TOMLPLUSPLUS QUIET IMPORTED_TARGET tomlplusplus)
 swell_require("toml++" libtomlplusplus-dev TOMLPLUSPLUS_FOUND)
+# netCDF: 2-D spectra E(f, θ) from files (wavespectra's and WAVEWATCH III's layouts).
+pkg_check_modules(NETCDF QUIET IMPORTED_TARGET netcdf)
+swell_require("netCDF" libnetcdf-dev NETCDF_FOUND)
 find_path(RANDOM123_INCLUDE_DIR Random123/philox.h)
 swell_require("Random123" librandom123-dev RANDOM123_INCLUDE_DIR)

@@ -18,7 +18,7 @@ SWELL_PACKAGES=(
   libopenexr-dev libdeflate-dev
   libvulkan-dev mesa-vulkan-drivers glslc vulkan-tools vulkan-validationlayers
   libvkfft-dev glslang-dev spirv-tools
-  libboost-math-dev nlohmann-json3-dev libcli11-dev libfmt-dev libtomlplusplus-dev
+  libboost-math-dev nlohmann-json3-dev libcli11-dev libfmt-dev libtomlplusplus-dev libnetcdf-dev
   librandom123-dev
   gnuplot-nox
   openmpi-bin libopenmpi-dev

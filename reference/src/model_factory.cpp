@@ -142,11 +142,12 @@ std::shared_ptr<const Jonswap> make_jonswap(const Reader& r) {
 }  // namespace
 
 std::vector<std::string> frequency_model_names() {
-  return {"phillips", "pierson-moskowitz", "bretschneider", "jonswap", "tma"};
+  return {"phillips", "pierson-moskowitz", "bretschneider", "jonswap",     "tma",
+          "gaussian", "ochi-hubble",       "torsethaugen"};
 }
 
 std::vector<std::string> spreading_model_names() {
-  return {"cos2s", "mitsuyasu", "hasselmann", "donelan-banner", "cos-power"};
+  return {"cos2s", "mitsuyasu", "hasselmann", "donelan-banner", "cos-power", "horvath"};
 }
 
 std::vector<ParameterInfo> model_parameters(const std::string& model) {
@@ -172,10 +173,32 @@ std::vector<ParameterInfo> model_parameters(const std::string& model) {
                         {"small_wave_cutoff", "m", "l in e^(−k²l²) (default 0)"},
                         {"against_wind_factor", "", "scale of waves against the wind, 0…1 (default 1)"}});
   }
+  if (model == "gaussian") {
+    return with_common({{"hs", "m", "significant height of the full Gaussian (4√m0 if σ ≪ ωp)"},
+                        {"tp", "s", "peak period (ωp = 2π/Tp)"},
+                        {"sigma", "rad/s", "width σ of the Gaussian in ω, > 0"}});
+  }
+  if (model == "ochi-hubble") {
+    return with_common({{"hs1", "m", "significant wave height of component 1"},
+                        {"tp1", "s", "peak period of component 1"},
+                        {"lambda1", "", "shape λ1 of component 1, > 0 (1: Bretschneider)"},
+                        {"hs2", "m", "significant wave height of component 2"},
+                        {"tp2", "s", "peak period of component 2"},
+                        {"lambda2", "", "shape λ2 of component 2, > 0 (1: Bretschneider)"}});
+  }
+  if (model == "torsethaugen") {
+    return with_common({{"hs", "m", "significant wave height of the sea (both peaks)"},
+                        {"tp", "s", "peak period of the primary peak, 2√Hs…25 s"}});
+  }
   if (model == "cos2s") return {{"s", "", "spreading exponent"}};
   if (model == "mitsuyasu") return {{"s_max", "", "spreading exponent at the peak"}};
   if (model == "hasselmann") return {{"wave_age", "", "U10/cp at the peak (default 1.17)"}};
   if (model == "donelan-banner") return {};
+  if (model == "horvath") {
+    return {{"wave_age", "", "U10/cp at the peak (default 1.17)"},
+            {"swell", "", "Horvath's swell elongation ξ ≥ 0 (default 0)"},
+            {"spread_blend", "", "weight b of a uniform spread, 0…1 (default 0)"}};
+  }
   if (model == "cos-power") {
     return {{"p", "", "exponent of |cos θ|"},
             {"one_sided", "yes|no", "no energy against the mean direction (default no)"}};
@@ -220,6 +243,25 @@ FrequencySpectrumPtr build_frequency_spectrum(const ModelSpec& spec) {
     return PiersonMoskowitz::bretschneider(r.required("hs", "m"), r.required("tp", "s"));
   }
   if (spec.model == "jonswap") return make_jonswap(r);
+  if (spec.model == "gaussian") {
+    return GaussianSwell::create(r.required("hs", "significant wave height in m"),
+                                 r.required("tp", "peak period in s"),
+                                 r.required("sigma", "width of the Gaussian in ω, rad/s"));
+  }
+  if (spec.model == "ochi-hubble") {
+    auto component = [&](const std::string& j) {
+      return OchiHubbleComponent{
+          r.required("hs" + j, "significant wave height of component " + j + " in m"),
+          r.required("tp" + j, "peak period of component " + j + " in s"),
+          r.required("lambda" + j, "shape of component " + j + ", > 0")};
+    };
+    const auto first = component("1");
+    return OchiHubble::create(first, component("2"));
+  }
+  if (spec.model == "torsethaugen") {
+    return Torsethaugen::create(r.required("hs", "significant wave height in m"),
+                                r.required("tp", "peak period in s"), g);
+  }
   if (spec.model == "tma") {
     const double depth = r.required("depth", "water depth in m");
     const auto factor = r.choice("depth_factor", {"exact", "thompson-vincent"}) == "exact"
@@ -276,6 +318,13 @@ SpreadingPtr make_spreading(const ModelSpec& spec, double omega_p) {
   }
   if (spec.model == "hasselmann") return Cos2s::hasselmann(omega_p, r.number_or("wave_age", 1.17));
   if (spec.model == "donelan-banner") return DonelanBanner::create(omega_p);
+  if (spec.model == "horvath") {
+    Horvath::Parameters p;
+    p.wave_age = r.number_or("wave_age", p.wave_age);
+    p.swell = r.number_or("swell", p.swell);
+    p.spread_blend = r.number_or("spread_blend", p.spread_blend);
+    return Horvath::create(omega_p, p);
+  }
   return CosPower::create(r.required("p", "exponent of |cos θ|"),
                           r.choice("one_sided", {"no", "yes"}) == "yes");
 }

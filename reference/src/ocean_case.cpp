@@ -4,10 +4,18 @@
 #include <memory>
 #include <fmt/format.h>
 
+#include "swell/reference/composite_spectrum.hpp"
 #include "swell/reference/errors.hpp"
+#include "swell/reference/table_spectrum.hpp"
 
 namespace swell::reference {
 namespace {
+
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
 
 // Ψ times a cascade's band weight w(|k|)². Its omnidirectional spectrum stays the sea's: the
 // weight depends on |k| alone, so a cascade's S_c(ω) would be w(k(ω))² S(ω), but what reads it
@@ -74,8 +82,28 @@ DirectionalSpectrumPtr OceanCase::directional_spectrum() const {
   return sea;
 }
 
-ModelSpec OceanCase::full_spectrum_spec() const {
-  ModelSpec spec = spectrum;
+std::vector<SeaComponent> OceanCase::components() const {
+  std::vector<SeaComponent> out{
+      {spectrum, spreading, wind_dir_deg, energy_factor, short_wave_fade, table}};
+  out.insert(out.end(), more_components.begin(), more_components.end());
+  return out;
+}
+
+void OceanCase::set_components(const std::vector<SeaComponent>& all) {
+  if (all.empty()) throw InvalidInput("a sea needs at least one component");
+  spectrum = all.front().spectrum;
+  spreading = all.front().spreading;
+  wind_dir_deg = all.front().wind_dir_deg;
+  energy_factor = all.front().energy_factor;
+  short_wave_fade = all.front().short_wave_fade;
+  table = all.front().table;
+  more_components.assign(all.begin() + 1, all.end());
+}
+
+ModelSpec OceanCase::full_spectrum_spec() const { return full_spectrum_spec(components().front()); }
+
+ModelSpec OceanCase::full_spectrum_spec(const SeaComponent& component) const {
+  ModelSpec spec = component.spectrum;
   for (const char* common : {"gravity", "depth", "wind_dir"}) {
     if (spec.numbers.count(common)) {
       throw InvalidInput(fmt::format(
@@ -86,7 +114,7 @@ ModelSpec OceanCase::full_spectrum_spec() const {
   }
   spec.numbers["gravity"] = gravity;
   spec.numbers["depth"] = depth;
-  spec.numbers["wind_dir"] = wind_dir_deg;
+  spec.numbers["wind_dir"] = component.wind_dir_deg;
   return spec;
 }
 
@@ -96,23 +124,69 @@ double OceanCase::omega(double k) const {
   return quantize_omega(Dispersion::finite_depth(depth, gravity).omega(k), loop_period);
 }
 
-DirectionalSpectrumPtr OceanCase::sea_spectrum() const {
-  const auto frequency = make_frequency_spectrum(full_spectrum_spec());
-  if (spectrum.model == "phillips") {
-    if (!spreading.model.empty()) {
-      throw InvalidInput("spectrum 'phillips' carries its own directional factor |k̂·ŵ|^p; "
-                         "give no spreading model (got '" + spreading.model + "')");
+DirectionalSpectrumPtr OceanCase::component_spectrum(const SeaComponent& c) const {
+  const double toward = c.wind_dir_deg * 3.14159265358979323846 / 180.0;
+  if (c.table) {
+    if (c.table->is_directional()) {
+      if (!c.spreading.model.empty()) {
+        throw InvalidInput("a 2-D spectrum table E(f, θ) carries its own directions; give no "
+                           "spreading model (got '" + c.spreading.model + "')");
+      }
+      return adjusted_spectrum(table_directional_spectrum(c.table, dispersion()), c.energy_factor,
+                               c.short_wave_fade);
     }
-    return std::dynamic_pointer_cast<const Phillips>(frequency);
+    if (c.spreading.model.empty()) {
+      throw InvalidInput("a 1-D spectrum table S(f) needs a spreading model (" +
+                         join_names(spreading_model_names()) + ")");
+    }
+    const auto frequency = table_frequency_spectrum(c.table);
+    return adjusted_spectrum(
+        SpreadSpectrum::create(frequency, make_spreading(c.spreading, frequency->peak_omega()),
+                               dispersion(), toward),
+        c.energy_factor, c.short_wave_fade);
   }
-  if (spreading.model.empty()) {
-    throw InvalidInput("spectrum '" + spectrum.model +
-                       "' needs a spreading model (cos2s, mitsuyasu, hasselmann, "
-                       "donelan-banner, cos-power)");
+  const auto frequency = make_frequency_spectrum(full_spectrum_spec(c));
+  if (c.spectrum.model == "phillips") {
+    if (!c.spreading.model.empty()) {
+      throw InvalidInput("spectrum 'phillips' carries its own directional factor |k̂·ŵ|^p; "
+                         "give no spreading model (got '" + c.spreading.model + "')");
+    }
+    return adjusted_spectrum(std::dynamic_pointer_cast<const Phillips>(frequency),
+                             c.energy_factor, c.short_wave_fade);
   }
-  const auto spread = make_spreading(spreading, frequency->peak_omega());
-  return SpreadSpectrum::create(frequency, spread, dispersion(),
-                                wind_dir_deg * 3.14159265358979323846 / 180.0);
+  if (c.spreading.model.empty()) {
+    throw InvalidInput("spectrum '" + c.spectrum.model +
+                       "' needs a spreading model (" + join_names(spreading_model_names()) + ")");
+  }
+  // Horvath's wave age comes from the case's wind (its spectrum's u10) when the spreading does
+  // not give one: U10/cp at the peak under the case's dispersion.
+  ModelSpec spreading_spec = c.spreading;
+  if (spreading_spec.model == "horvath" && !spreading_spec.numbers.count("wave_age") &&
+      c.spectrum.numbers.count("u10")) {
+    spreading_spec.numbers["wave_age"] =
+        Horvath::wave_age(c.spectrum.numbers.at("u10"), frequency->peak_omega(), dispersion());
+  }
+  const auto spread = make_spreading(spreading_spec, frequency->peak_omega());
+  return adjusted_spectrum(
+      SpreadSpectrum::create(frequency, spread, dispersion(), toward),
+      c.energy_factor, c.short_wave_fade);
+}
+
+DirectionalSpectrumPtr OceanCase::sea_spectrum() const {
+  std::vector<DirectionalSpectrumPtr> parts;
+  const auto all = components();
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (all.size() == 1) {
+      parts.push_back(component_spectrum(all[i]));
+      continue;
+    }
+    try {
+      parts.push_back(component_spectrum(all[i]));
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("[[spectrum]] component {}: {}", i, e.what()));
+    }
+  }
+  return summed_spectrum(std::move(parts));
 }
 
 void OceanCase::set_lattice(std::shared_ptr<const RankOneLattice> new_lattice) {
@@ -138,7 +212,13 @@ void OceanCase::validate() const {
   require(frames == 1 || dt > 0, "dt", "> 0 when there is more than one frame (s)", dt);
   require(std::isfinite(gravity) && gravity > 0, "gravity", "finite and > 0 (m/s²)", gravity);
   require(depth > 0 && !std::isnan(depth), "depth", "> 0 m or inf", depth);
-  require(std::isfinite(wind_dir_deg), "wind_dir_deg", "finite (degrees)", wind_dir_deg);
+  for (const auto& c : components()) {
+    require(std::isfinite(c.wind_dir_deg), "wind_dir_deg", "finite (degrees)", c.wind_dir_deg);
+    require(std::isfinite(c.energy_factor) && c.energy_factor > 0, "energy_factor",
+            "finite and > 0", c.energy_factor);
+    require(std::isfinite(c.short_wave_fade) && c.short_wave_fade >= 0, "short_wave_fade",
+            "finite and ≥ 0 (m)", c.short_wave_fade);
+  }
   require(std::isfinite(choppiness), "choppiness", "finite", choppiness);
   require(std::isfinite(loop_period) && loop_period >= 0, "loop_period", "finite and ≥ 0 (s)",
           loop_period);
@@ -173,8 +253,15 @@ std::string OceanCase::describe() const {
     for (const auto& [name, value] : spec.choices) out += fmt::format(" {}={}", name, value);
     return out;
   };
-  std::string out = params(spectrum);
-  if (!spreading.model.empty()) out += " + " + params(spreading);
+  std::string out;
+  for (const auto& c : components()) {
+    if (!out.empty()) out += " ⊕ ";
+    out += params(c.spectrum);
+    if (c.energy_factor != 1) out += fmt::format(" ×{:g}", c.energy_factor);
+    if (c.short_wave_fade != 0) out += fmt::format(" fade {:g} m", c.short_wave_fade);
+    if (!c.spreading.model.empty()) out += " + " + params(c.spreading);
+    if (is_composite()) out += fmt::format(" toward {:g}°", c.wind_dir_deg);
+  }
   if (lattice) {
     out += ", " + lattice->describe();
   } else {

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <numbers>
 #include <nlohmann/json.hpp>
+#include <tuple>
 
 #include "swell/reference/directional.hpp"
 #include "swell/reference/errors.hpp"
@@ -109,7 +110,8 @@ void spreading_checks(std::vector<CheckResult>& out) {
   const std::vector<SpreadingPtr> models = {
       Cos2s::constant(1),      Cos2s::constant(10),         Cos2s::constant(80),
       Cos2s::mitsuyasu(25, omega_p), Cos2s::hasselmann(omega_p), DonelanBanner::create(omega_p),
-      CosPower::create(2),     CosPower::create(5, true)};
+      CosPower::create(2),     CosPower::create(5, true),   Horvath::create(omega_p),
+      Horvath::create(omega_p, {0.9, 1.2, 0.3})};
   for (const auto& model : models) {
     double worst = 0;
     for (double r : {0.3, 0.7, 0.95, 1.0, 1.3, 2.5, 6.0}) {
@@ -126,6 +128,39 @@ void spreading_checks(std::vector<CheckResult>& out) {
     out.push_back(error_bound_check("spreading.normalization", subject, worst, 1e-9,
                                     "max |∫D dθ − 1| over ω/ωp = 0.3…6 (tanh-sinh)"));
   }
+
+  // Horvath (2015) against D(ω, θ) from the paper's formulas in 30-digit mpmath (ωp = 0.8):
+  // (ω, θ, U10/cp, ξ, b, D), from below the peak to far above it, with swell and blend.
+  struct HorvathValue {
+    double omega, theta, wave_age, swell, blend, d;
+  };
+  const HorvathValue values[] = {
+      {0.5, 0.3, 1.17, 0.0, 0.0, 0.31501783792984065},
+      {0.8, -1.0, 1.17, 0.5, 0.0, 0.066080017354092106},
+      {0.82, 0.7, 2.0, 0.0, 0.0, 0.27928966861672576},
+      {1.6, 0.4, 0.9, 1.2, 0.3, 0.47338835027229985},
+      {4.0, kPi, 1.17, 0.8, 0.25, 0.039788735772973834},
+      {0.2, -0.15, 1.17, 2.0, 0.6, 0.72628144454919155},
+      {1.2, 0.05, 3.0, 0.3, 0.1, 0.4084822525240131},
+      {2.4, -2.2, 1.17, 0.0, 0.0, 0.086857063600661377}};
+  double worst = 0;
+  for (const auto& v : values) {
+    const auto d = Horvath::create(omega_p, {v.wave_age, v.swell, v.blend});
+    worst = std::max(worst, std::abs((*d)(v.omega, v.theta) - v.d) / v.d);
+  }
+  out.push_back(error_bound_check("spreading.horvath_paper_values", "horvath, 8 (ω, θ, ξ, b)",
+                                  worst, 1e-12,
+                                  "max rel diff of D from the paper's formulas (mpmath)"));
+  // b = 1 is the uniform spread, exactly.
+  const auto uniform = Horvath::create(omega_p, {1.17, 1.5, 1.0});
+  worst = 0;
+  for (double r : {0.3, 1.0, 4.0}) {
+    for (double theta : {-3.0, 0.0, 1.0, kPi}) {
+      worst = std::max(worst, std::abs((*uniform)(r * omega_p, theta) - 0.5 / kPi));
+    }
+  }
+  out.push_back(error_bound_check("spreading.horvath_uniform_limit", "spread_blend = 1", worst, 0.0,
+                                  "max |D − 1/(2π)| over ω, θ"));
 }
 
 // ------------------------------------------------------------------ frequency spectra
@@ -198,6 +233,128 @@ void spectrum_checks(std::vector<CheckResult>& out) {
   }
   out.push_back(error_bound_check("spectrum.tma_deep_limit", "h = 1e4 m, Tp = 8 s", worst, 1e-12,
                                   "max rel diff of TMA from JONSWAP"));
+}
+
+// ------------------------------------------------------------------ swell and two-peak spectra
+
+// Largest relative difference of S at ω = x ωp from a table of independent values.
+double worst_relative(const FrequencySpectrum& s, double omega_p, const std::vector<double>& ratios,
+                      const std::vector<double>& expected) {
+  double worst = 0;
+  for (std::size_t i = 0; i < ratios.size(); ++i) {
+    worst = std::max(worst, std::abs(s(ratios[i] * omega_p) - expected[i]) / expected[i]);
+  }
+  return worst;
+}
+
+void swell_spectrum_checks(std::vector<CheckResult>& out) {
+  // Gaussian swell (DNV-RP-C205), cut at ω = 0: with a = ωp/σ and the standard normal Φ, φ,
+  // m0 = (Hs²/16) Φ(a), m1 = (Hs²/16)(ωp Φ + σ φ), m2 = (Hs²/16)((ωp² + σ²) Φ + ωp σ φ).
+  for (auto [hs, tp, sigma] : {std::tuple{3.0, 10.0, 0.2}, std::tuple{1.0, 8.0, 0.5}}) {
+    const auto g = GaussianSwell::create(hs, tp, sigma);
+    const double wp = 2 * kPi / tp, a = wp / sigma, scale = hs * hs / 16;
+    const double cdf = 0.5 * std::erfc(-a / std::sqrt(2.0));
+    const double pdf = std::exp(-0.5 * a * a) / std::sqrt(2 * kPi);
+    const double closed[] = {scale * cdf, scale * (wp * cdf + sigma * pdf),
+                             scale * ((wp * wp + sigma * sigma) * cdf + wp * sigma * pdf)};
+    for (int n : {0, 1, 2}) {
+      out.push_back(relative_check(
+          "moments.gaussian_truncated_closed_form",
+          fmt::format("gaussian Hs={} Tp={} σ={} rad/s: m{}", hs, tp, sigma, n),
+          spectral_moment(*g, n), closed[n], 1e-9,
+          "quadrature against the moments of a normal density cut at ω = 0"));
+    }
+  }
+
+  // Ochi–Hubble: WAFO's published example OchiHubble(Hm0 = 7, par = 2) at ω = 1, 2, 3 rad/s,
+  // printed to 8 decimals (pywafo, wafo/spectrum/models.py).
+  const double hm0 = 7.0;
+  const auto wafo = OchiHubble::create(
+      {0.84 * hm0, 2 * kPi * std::exp(0.016 * hm0) / 0.41, 2.55},
+      {0.54 * hm0, 2 * kPi * std::exp(0.026 * hm0) / 0.88, 1.82 * std::exp(-0.089 * hm0)});
+  double worst = 0;
+  const double published[] = {0.90155636, 0.04185445, 0.00583207};
+  for (int i = 0; i < 3; ++i) worst = std::max(worst, std::abs((*wafo)(i + 1.0) - published[i]));
+  out.push_back(error_bound_check("spectrum.ochi_hubble_wafo", "WAFO OchiHubble(Hm0=7, par=2)",
+                                  worst, 5e-9, "max |S − WAFO's printed value| at ω = 1, 2, 3"));
+  // Each component's moments in closed form: m_n = (Hs²/16) ωp^n ((4λ+1)/4)^(n/4)
+  // Γ(λ − n/4)/Γ(λ); a λ = 0.3 component has the slow ω^−2.2 tail.
+  for (auto [a, b] : {std::pair{OchiHubbleComponent{3, 14, 3}, OchiHubbleComponent{2, 7, 1.5}},
+                      std::pair{OchiHubbleComponent{1, 10, 2}, OchiHubbleComponent{0.8, 5, 0.3}}}) {
+    const auto oh = OchiHubble::create(a, b);
+    auto closed = [](const OchiHubbleComponent& c, int n) {
+      const double wp = 2 * kPi / c.tp;
+      return c.hs * c.hs / 16 * std::pow(wp, n) * std::pow((4 * c.lambda + 1) / 4, n / 4.0) *
+             std::exp(std::lgamma(c.lambda - n / 4.0) - std::lgamma(c.lambda));
+    };
+    for (int n : {-1, 0, 1, 2}) {
+      if (n >= oh->tail_exponent() - 1) continue;
+      out.push_back(relative_check(
+          "moments.ochi_hubble_closed_form",
+          fmt::format("ochi-hubble λ = {}, {}: m{}", a.lambda, b.lambda, n),
+          spectral_moment(*oh, n), closed(a, n) + closed(b, n), 1e-9,
+          "quadrature against Σ (Hs²/16) ωp^n c^(n/4) Γ(λ − n/4)/Γ(λ)"));
+    }
+  }
+  // λ = 1 is the Bretschneider spectrum.
+  const auto oh1 = OchiHubble::create({3.0, 8.0, 1.0}, {1.0, 5.0, 1.0});
+  const auto pm_a = PiersonMoskowitz::bretschneider(3.0, 8.0);
+  const auto pm_b = PiersonMoskowitz::bretschneider(1.0, 5.0);
+  worst = 0;
+  for (double omega : log_space(0.4, 5.0, 200)) {
+    const double want = (*pm_a)(omega) + (*pm_b)(omega);
+    worst = std::max(worst, std::abs((*oh1)(omega) - want) / want);
+  }
+  out.push_back(error_bound_check("spectrum.ochi_hubble_lambda1_is_bretschneider",
+                                  "Hs = 3, 1 m, Tp = 8, 5 s", worst, 1e-12,
+                                  "max rel diff of Ochi–Hubble(λ = 1) from Bretschneider"));
+
+  // Torsethaugen (simplified, DNV-RP-C205) against a 30-digit transcription of DNV's formulas
+  // in S(f) (mpmath), at ω = x ωp, and against 4Subsea's waveresponse (the paper's algorithm,
+  // g = 9.80665) run with DNV's exponent 0.857; m0/(Hs²/16) against mpmath quadrature — not 1,
+  // because DNV's G0 = 3.26 and Aγ are rounded fits.
+  const std::vector<double> ratios = {0.5, 0.8, 1.0, 1.3, 2.0, 3.0};
+  struct TorsethaugenCase {
+    double hs, tp;
+    std::vector<double> dnv;
+    double m0_ratio;
+  };
+  const std::vector<TorsethaugenCase> torsethaugen = {
+      {4, 8, {0.29061072280691304, 1.0154861613668077, 2.1689281521830715, 0.75343088777611641,
+              0.17436898835547997, 0.036072473661372455}, 1.02339960453147},
+      {6, 12, {2.2903701689969377e-5, 2.7238151026345937, 7.369622660033775, 3.1436048502715009,
+               0.74685108900168517, 0.15511390351634812}, 1.01909993028458},
+      {2, 14, {1.1499391172012035e-6, 0.13860647506848924, 0.82035741219281849,
+               0.18225984909559211, 0.20855437073644803, 0.072083492449426969}, 1.01383233267775},
+      {1, 6.5, {9.2869081527668097e-6, 0.04485281420219434, 0.077528481692127069,
+                0.051972787868227158, 0.012367935378364926, 0.0025686595739903307}, 0.998714612509},
+  };
+  for (const auto& c : torsethaugen) {
+    const auto t = Torsethaugen::create(c.hs, c.tp);
+    const auto subject =
+        fmt::format("torsethaugen Hs={} Tp={} ({})", c.hs, c.tp,
+                    t->swell_dominated() ? "swell dominated" : "wind-sea dominated");
+    out.push_back(error_bound_check("spectrum.torsethaugen_dnv_transcription", subject,
+                                    worst_relative(*t, 2 * kPi / c.tp, ratios, c.dnv), 1e-12,
+                                    "max rel diff of S from mpmath, ω/ωp = 0.5…3"));
+    out.push_back(relative_check("moments.torsethaugen_m0_ratio", subject,
+                                 spectral_moment(*t, 0) / (c.hs * c.hs / 16), c.m0_ratio, 1e-8,
+                                 "m0/(Hs²/16) against mpmath quadrature"));
+  }
+  const std::vector<std::pair<std::pair<double, double>, std::vector<double>>> waveresponse = {
+      {{4, 8}, {0.29061072240957536, 1.0154415814299735, 2.1693364676981099, 0.75337705647832154,
+                0.17435603185187618, 0.036069782718185117}},
+      {{6, 12}, {2.2902279524294233e-05, 2.7236594291702483, 7.3713223664530299,
+                 3.1434132105831076, 0.74680471457725195, 0.15510427198724797}},
+  };
+  for (const auto& [sea, values] : waveresponse) {
+    const auto t = Torsethaugen::create(sea.first, sea.second, 9.80665);
+    out.push_back(error_bound_check(
+        "spectrum.torsethaugen_waveresponse",
+        fmt::format("Hs={} Tp={} g=9.80665", sea.first, sea.second),
+        worst_relative(*t, 2 * kPi / sea.second, ratios, values), 1e-12,
+        "max rel diff of S from waveresponse's algorithm with DNV's 0.857"));
+  }
 }
 
 // ------------------------------------------------------------------ Ψ(k) Jacobian
@@ -294,6 +451,7 @@ std::vector<CheckResult> run_reference_checks(const std::filesystem::path& data_
   dispersion_checks(data_dir, results);
   spreading_checks(results);
   spectrum_checks(results);
+  swell_spectrum_checks(results);
   directional_checks(results);
   measured_spectrum_checks(data_dir, results);
   return results;

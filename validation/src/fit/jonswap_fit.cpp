@@ -100,6 +100,19 @@ struct Geometry {
 };
 
 void require_family(const OceanCase& ocean_case) {
+  if (ocean_case.is_composite()) {
+    throw InvalidInput(fmt::format(
+        "the JONSWAP fit needs a one-component sea; this case is a composite sea of {} "
+        "components ([[spectrum]]: {})", ocean_case.more_components.size() + 1,
+        ocean_case.describe()));
+  }
+  if (ocean_case.energy_factor != 1 || ocean_case.short_wave_fade != 0) {
+    throw InvalidInput(fmt::format(
+        "the JONSWAP fit fits the declared JONSWAP spectrum itself; this case declares {} "
+        "(remove energy_factor and short_wave_fade to fit the engine's own spectrum)",
+        ocean_case.energy_factor != 1 ? fmt::format("energy_factor = {:g}", ocean_case.energy_factor)
+                                      : fmt::format("short_wave_fade = {:g} m", ocean_case.short_wave_fade)));
+  }
   const auto& model = ocean_case.spectrum.model;
   if (model != "jonswap" && model != "tma" && model != "bretschneider" &&
       model != "pierson-moskowitz") {

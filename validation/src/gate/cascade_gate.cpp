@@ -74,6 +74,7 @@ GateReport judge_cascades(const CaseFile& case_file,
                             expected_travelling_power(surface.ocean, options.resolved_threads()),
                             options, start, alpha_per_check);
     for (auto& result : part.results) result.check = name + "." + result.check;
+    for (const auto& note : part.notes) report.notes.push_back(name + ": " + note);
     for (auto& entry : part.skipped) {
       entry.check = name + "." + entry.check;
       report.skipped.push_back(std::move(entry));

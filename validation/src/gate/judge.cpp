@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "swell/reference/errors.hpp"
+#include "swell/reference/sampling_validity.hpp"
 #include "swell/validation/checks/ocean_check_table.hpp"
 #include "swell/validation/checks/ocean_checks.hpp"
 #include "swell/validation/stats/periodogram.hpp"
@@ -56,6 +57,29 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
   check_options.analysis_backend = kAnalysisBackend;
   options.report_progress(fmt::format("judging {} frame{} of {}×{}…", report.frames,
                                        report.frames == 1 ? "" : "s", report.nx, report.ny));
+
+  // A tabulated sea: what its reader did, and how much of the table the sampling carries (the
+  // rest, beyond the grid's band of |k|, is judged as absent).
+  bool tabulated = false;
+  const auto components = case_file.ocean.components();
+  for (std::size_t i = 0; i < components.size(); ++i) {
+    if (!components[i].table) continue;
+    tabulated = true;
+    const std::string who = components.size() > 1
+                                ? fmt::format("component {} ({}): ", i, components[i].spectrum.model)
+                                : components[i].spectrum.model + ": ";
+    for (const auto& note : components[i].table->notes) report.notes.push_back(who + note);
+  }
+  if (tabulated && !case_file.ocean.is_lattice()) {
+    // Σ Ψ Δk² over the grid against ∫∫ Ψ dk: below 100 % where the table reaches beyond the
+    // grid's band of |k|; a band-averaged table's steps can put it a little above.
+    const auto summary = reference::summarize_sampling(case_file.ocean, &travelling_power);
+    report.notes.push_back(fmt::format(
+        "the grid's wave vectors carry {:.2f} % of the sea's m0 (Σ Ψ Δk² = {:.4g} m², ∫∫ Ψ dk = "
+        "{:.4g} m²; the grid's band of |k| is {:.3g} to {:.3g} rad/m, and what lies beyond it is "
+        "judged as absent)",
+        100 * summary.fraction, summary.m0_on_grid, summary.m0, summary.k_min, summary.k_max));
+  }
 
   // Bad input (a grid that does not match, no height field) is thrown by the analysis.
   auto parts = run_ocean_check_groups(case_file.ocean, frames, ends, check_options,

@@ -27,7 +27,7 @@ nlohmann::json gate_json(const GateReport& report) {
     const std::string &check = entry.check, &why = entry.why;
     skipped.push_back({{"check", valid_utf8(check)}, {"reason", valid_utf8(why)}});
   }
-  return {{"case", valid_utf8(report.case_path)},
+  nlohmann::json document = {{"case", valid_utf8(report.case_path)},
           {"subject", valid_utf8(report.subject)},
           {"frames", report.frames},
           {"nx", report.nx},
@@ -45,6 +45,12 @@ nlohmann::json gate_json(const GateReport& report) {
           {"failed", checks["failed"]},
           {"seconds", json_number(report.seconds)},
           {"pass", report.passed()}};
+  if (!report.notes.empty()) {
+    nlohmann::json notes = nlohmann::json::array();
+    for (const auto& note : report.notes) notes.push_back(valid_utf8(note));
+    document["notes"] = notes;
+  }
+  return document;
 }
 
 }  // namespace swell::validation

@@ -24,8 +24,10 @@ std::string render_gate(const GateReport& report) {
                      report.samples.empty() ? fmt::format("{}×{}", report.nx, report.ny)
                                             : report.samples,
                      fields.empty() ? "none" : fields, report.unit_roundoff);
-  out += fmt::format("family-wise α = {:.3g}, shared by {} statistical checks: each at α = {:.3g}\n\n",
+  out += fmt::format("family-wise α = {:.3g}, shared by {} statistical checks: each at α = {:.3g}\n",
                      report.alpha, report.statistical_checks, report.alpha_per_check);
+  for (const auto& note : report.notes) out += "note: " + note + "\n";
+  out += "\n";
 
   struct Row {
     std::string verdict, check, measured, expected, judged, reason;

@@ -23,6 +23,8 @@
 #include "swell/reference/errors.hpp"
 #include "swell/reference/model_factory.hpp"
 #include "swell/validation/io/frame_io.hpp"
+#include "swell/validation/io/ndbc_directional.hpp"
+#include "swell/validation/io/spectrum_table_file.hpp"
 
 namespace swell::validation {
 namespace {
@@ -346,9 +348,21 @@ std::string toml_key(const std::string& key) {
 }
 
 void write_parameters(std::string& out, const ModelSpec& spec) {
+  // A table's netCDF selection is kept as numbers "select.<dimension>" and written back as the
+  // inline table it was read from.
+  std::string select;
   for (const auto& [name, value] : spec.numbers) {
-    out += fmt::format("{} = {}\n", toml_key(name), toml_number(value));
+    if (name.rfind("select.", 0) == 0) {
+      select += fmt::format("{}{} = {}", select.empty() ? "" : ", ", toml_key(name.substr(7)),
+                            static_cast<long long>(value));
+      continue;
+    }
+    // ndbc's number of directions is a TOML integer.
+    out += name == "directions"
+               ? fmt::format("{} = {}\n", toml_key(name), static_cast<long long>(value))
+               : fmt::format("{} = {}\n", toml_key(name), toml_number(value));
   }
+  if (!select.empty()) out += "select = {" + select + "}\n";
   for (const auto& [name, value] : spec.choices) {
     out += fmt::format("{} = {}\n", toml_key(name), toml_string(value));
   }
@@ -529,6 +543,15 @@ void check_sections(const Reporter& report, const toml::table& document) {
       report.fail(key.source(), fmt::format("unknown section [{}]; valid sections: {}", name,
                                             join(kSections)));
     }
+    if (name == "spectrum" && node.is_array()) {
+      if (!node.is_array_of_tables()) {
+        report.fail(key.source(), fmt::format("'spectrum' must be a section [spectrum] or an array "
+                                              "of tables [[spectrum]] (one per component of a "
+                                              "composite sea), not {}",
+                                              type_name(node)));
+      }
+      continue;
+    }
     if (name == "cascade") {
       if (!node.is_array_of_tables()) {
         report.fail(key.source(), fmt::format("'cascade' must be an array of tables [[cascade]], "
@@ -642,21 +665,167 @@ void read_physics(const Section& physics, reference::OceanCase& ocean) {
   }
 }
 
-// [spectrum]: model (required), scale, the model's parameters; phillips may carry the wind
-// direction here, having no [spreading] model. [spreading]: model (absent for phillips), its
-// parameters, wind_dir_deg.
-void read_sea(const Reporter& report, const Section& spectrum, const Section& spreading,
-              CaseFile& out) {
-  auto& ocean = out.ocean;
-  if (!spectrum.present()) {
-    report.fail("missing section [spectrum] (model = \"jonswap\" | …, with its parameters)");
+// One component of the sea from its spectrum table (model, the model's parameters,
+// energy_factor, short_wave_fade; scale where `scale_allowed`; wind_dir_deg for phillips, which
+// has no spreading model) and its spreading table (model, its parameters, wind_dir_deg).
+// The keys of model = "table" (docs/case_files.md §Spectra from files): the file, relative to
+// the case file, its declared units and direction convention, and for netCDF the variables
+// and the index of every other dimension. The table is read here, once.
+void read_table(const Section& spectrum, const fs::path& directory, reference::SeaComponent& c) {
+  const std::vector<std::string> choices = {"frequency_unit",     "density_unit",
+                                            "direction_convention", "direction_unit",
+                                            "variable",           "frequency_variable",
+                                            "direction_variable"};
+  SpectrumTableDeclaration d;
+  const std::string file = spectrum.required_string("file", "the table's path, relative to the case file");
+  d.file = fs::path(file).is_absolute() ? fs::path(file) : directory / file;
+  // A regular file only: a device or a pipe could be read without end.
+  std::error_code error;
+  if (!fs::is_regular_file(d.file, error)) {
+    spectrum.fail("file", fmt::format("{}: no such file (or not a regular file)", d.file.string()));
   }
-  if (!spectrum.has("model")) {
+  c.spectrum.choices["file"] = fs::absolute(d.file).lexically_normal().string();
+  for (const auto& key : choices) {
+    if (const auto value = spectrum.string(key)) c.spectrum.choices[key] = *value;
+  }
+  auto choice = [&](const std::string& key, std::string& into) {
+    if (auto it = c.spectrum.choices.find(key); it != c.spectrum.choices.end()) into = it->second;
+  };
+  choice("frequency_unit", d.frequency_unit);
+  choice("density_unit", d.density_unit);
+  choice("direction_convention", d.direction_convention);
+  choice("direction_unit", d.direction_unit);
+  choice("variable", d.variable);
+  choice("frequency_variable", d.frequency_variable);
+  choice("direction_variable", d.direction_variable);
+  if (const toml::node* select = spectrum.find("select")) {
+    const auto* table = select->as_table();
+    if (!table) spectrum.wrong_type("select", "an inline table of indices by dimension name, e.g. {time = 0, site = 0}");
+    for (auto&& [dim, index] : *table) {
+      const auto value = index.as_integer();
+      if (!value) spectrum.wrong_type("select", "integer indices, e.g. {time = 0, site = 0}");
+      d.select[std::string(dim.str())] = long(value->get());
+      c.spectrum.numbers["select." + std::string(dim.str())] = double(value->get());
+    }
+  }
+  try {
+    c.table = std::make_shared<const reference::SpectrumTable>(read_spectrum_table(d));
+  } catch (const InvalidInput& e) {
+    spectrum.fail("file", e.what());
+  }
+}
+
+// The keys of model = "ndbc" (docs/case_files.md §A buoy's measured sea): the five files of an
+// NDBC station's directional product (relative to the case file), the hour, the method and the
+// number of directions sampled.
+void read_ndbc(const Section& spectrum, const fs::path& directory, reference::SeaComponent& c) {
+  NdbcDirectionalFiles files;
+  const std::pair<const char*, std::string*> paths[] = {{"data_spec", &files.data_spec},
+                                                        {"swdir", &files.swdir},
+                                                        {"swdir2", &files.swdir2},
+                                                        {"swr1", &files.swr1},
+                                                        {"swr2", &files.swr2}};
+  for (const auto& [key, into] : paths) {
+    const std::string given = spectrum.required_string(key, "the path of the station's ." +
+                                                                std::string(key) + " file");
+    const fs::path path = fs::path(given).is_absolute() ? fs::path(given) : directory / given;
+    // A regular file only: a device or a pipe could be read without end.
+    std::error_code error;
+    if (!fs::is_regular_file(path, error)) {
+      spectrum.fail(key, fmt::format("{}: no such file (or not a regular file)", path.string()));
+    }
+    *into = fs::absolute(path).lexically_normal().string();
+    c.spectrum.choices[key] = *into;
+  }
+  const std::string time = spectrum.required_string(
+      "time", "the hour, as the files stamp it: \"YYYY-MM-DD hh:mm\", e.g. \"2020-06-02 02:50\"");
+  c.spectrum.choices["time"] = time;
+  const std::string method_name = spectrum.string("method").value_or("mem");
+  c.spectrum.choices["method"] = method_name;
+  DirectionalMethod method = DirectionalMethod::mem;
+  try {
+    method = parse_directional_method(method_name);
+  } catch (const InvalidInput& e) {
+    spectrum.fail("method", e.what());
+  }
+  // 360 directions (1°): the maximum entropy estimate's narrowest peaks in a week of station
+  // 41010 need more than 72 samples to reproduce their own coefficients (docs/ndbc_directional.md).
+  const auto directions = spectrum.integer("directions").value_or(360);
+  if (directions < 5 || directions > 36000) {
+    spectrum.fail("directions", fmt::format("must be an integer in 5…36000 (got {})", directions));
+  }
+  c.spectrum.numbers["directions"] = double(directions);
+  try {
+    c.table = std::make_shared<const reference::SpectrumTable>(
+        read_ndbc_directional(files, time, method, int(directions)));
+  } catch (const InvalidInput& e) {
+    spectrum.fail("time", e.what());
+  }
+}
+
+reference::SeaComponent read_component(const Section& spectrum, const Section& spreading,
+                                       std::vector<std::string> other_keys,
+                                       const fs::path& directory) {
+  reference::SeaComponent c;
+  if (spectrum.string("model") == std::optional<std::string>("table")) {
+    c.spectrum.model = "table";
+    std::vector<std::string> valid = other_keys;
+    for (const char* key : {"model", "file", "frequency_unit", "density_unit", "direction_convention",
+                            "direction_unit", "variable", "frequency_variable",
+                            "direction_variable", "select", "energy_factor", "short_wave_fade"}) {
+      valid.push_back(key);
+    }
+    spectrum.allow_only(valid, " for model 'table'");
+    read_table(spectrum, directory, c);
+    other_keys.clear();
+  } else if (spectrum.string("model") == std::optional<std::string>("ndbc")) {
+    c.spectrum.model = "ndbc";
+    std::vector<std::string> valid = other_keys;
+    for (const char* key : {"model", "data_spec", "swdir", "swdir2", "swr1", "swr2", "time",
+                            "method", "directions", "energy_factor", "short_wave_fade"}) {
+      valid.push_back(key);
+    }
+    spectrum.allow_only(valid, " for model 'ndbc'");
+    read_ndbc(spectrum, directory, c);
+    other_keys.clear();
+  } else if (!spectrum.has("model")) {
     spectrum.missing("model", "one of " + join(reference::frequency_model_names()));
   }
-  ocean.spectrum.model = model_name(spectrum, reference::frequency_model_names(), "spectrum");
-  read_model_parameters(spectrum, ocean.spectrum.model, {"model", "scale", "wind_dir_deg"},
-                        ocean.spectrum);
+  if (!c.table) {
+    c.spectrum.model = model_name(spectrum, reference::frequency_model_names(), "spectrum");
+    for (const char* key : {"model", "wind_dir_deg", "energy_factor", "short_wave_fade"}) {
+      other_keys.push_back(key);
+    }
+    read_model_parameters(spectrum, c.spectrum.model, other_keys, c.spectrum);
+  }
+  c.energy_factor = spectrum.number_or("energy_factor", 1);
+  if (!(std::isfinite(c.energy_factor) && c.energy_factor > 0)) {
+    spectrum.fail("energy_factor", fmt::format("must be finite and > 0: the factor F by which the "
+                                               "engine's energy exceeds the declared spectrum's "
+                                               "(got {:g})", c.energy_factor));
+  }
+  c.short_wave_fade = spectrum.number_or("short_wave_fade", 0);
+  if (!(std::isfinite(c.short_wave_fade) && c.short_wave_fade >= 0)) {
+    spectrum.fail("short_wave_fade", fmt::format("must be a length ≥ 0 in m, Ψ·e^(−k²l²) (got {:g})",
+                                                 c.short_wave_fade));
+  }
+  if (spreading.has("model")) {
+    c.spreading.model = model_name(spreading, reference::spreading_model_names(), "spreading");
+    read_model_parameters(spreading, c.spreading.model, {"model", "wind_dir_deg"}, c.spreading);
+  } else {
+    spreading.allow_only({"model", "wind_dir_deg"},
+                         " (spreading parameters need a model = \"cos2s\" | …)");
+  }
+  if (spectrum.has("wind_dir_deg") && spreading.has("wind_dir_deg")) {
+    spreading.fail("wind_dir_deg", fmt::format("given in both [{}] and [{}]; give it once",
+                                               spectrum.name(), spreading.name()));
+  }
+  c.wind_dir_deg = spectrum.has("wind_dir_deg") ? *spectrum.number("wind_dir_deg")
+                                                : spreading.number_or("wind_dir_deg", 0);
+  return c;
+}
+
+void read_scale(const Section& spectrum, CaseFile& out) {
   if (auto scale = spectrum.string("scale")) {
     if (*scale == "absolute") {
       out.scale = SpectrumScale::absolute;
@@ -666,20 +835,52 @@ void read_sea(const Reporter& report, const Section& spectrum, const Section& sp
       spectrum.fail("scale", "must be \"absolute\" or \"free\" (got \"" + *scale + "\")");
     }
   }
+}
 
-  if (spreading.has("model")) {
-    ocean.spreading.model = model_name(spreading, reference::spreading_model_names(), "spreading");
-    read_model_parameters(spreading, ocean.spreading.model, {"model", "wind_dir_deg"},
-                          ocean.spreading);
-  } else {
-    spreading.allow_only({"model", "wind_dir_deg"},
-                         " (spreading parameters need a model = \"cos2s\" | …)");
+// The sea: [spectrum] and [spreading] for one component, or [[spectrum]] tables, each with its
+// own [spectrum.spreading], for a composite sea whose components' Ψ add. scale applies to the
+// whole sea and is given once, in the first component.
+void read_sea(const Reporter& report, const toml::table& document, CaseFile& out) {
+  const toml::node* node = document.get("spectrum");
+  if (!node) report.fail("missing section [spectrum] (model = \"jonswap\" | …, with its parameters)");
+  if (!node->is_array()) {
+    const Section spectrum(report, "spectrum", node->as_table());
+    const Section spreading = section_of(report, document, "spreading");
+    read_scale(spectrum, out);
+    out.ocean.set_components({read_component(spectrum, spreading, {"scale"}, out.directory)});
+    return;
   }
-  if (spectrum.has("wind_dir_deg") && spreading.has("wind_dir_deg")) {
-    spreading.fail("wind_dir_deg", "given in both [spectrum] and [spreading]; give it once");
+  if (document.contains("spreading")) {
+    report.fail("[spreading]: a composite sea ([[spectrum]] tables) gives each component's "
+                "spreading in its own [spectrum.spreading] table, after that component's "
+                "[[spectrum]]; remove [spreading]");
   }
-  ocean.wind_dir_deg = spectrum.has("wind_dir_deg") ? *spectrum.number("wind_dir_deg")
-                                                    : spreading.number_or("wind_dir_deg", 0);
+  const toml::array& tables = *node->as_array();
+  if (tables.empty()) report.fail("[[spectrum]]: no components");
+  std::vector<reference::SeaComponent> components;
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    const toml::table* table = tables[i].as_table();
+    const std::string name = fmt::format("spectrum {}", i);
+    const Section spectrum(report, name, table);
+    const toml::node* spreading_node = table->get("spreading");
+    if (spreading_node && !spreading_node->is_table()) {
+      spectrum.wrong_type("spreading", "a table [spectrum.spreading] (model, its parameters, "
+                                       "wind_dir_deg)");
+    }
+    const Section spreading(report, name + ".spreading",
+                            spreading_node ? spreading_node->as_table() : nullptr);
+    if (i == 0) {
+      read_scale(spectrum, out);
+    } else if (spectrum.has("scale")) {
+      spectrum.fail("scale", "applies to the whole sea: give it once, in the first [[spectrum]]");
+    }
+    components.push_back(
+        read_component(spectrum, spreading,
+                       i == 0 ? std::vector<std::string>{"scale", "spreading"}
+                              : std::vector<std::string>{"spreading"},
+                       out.directory));
+  }
+  out.ocean.set_components(components);
 }
 
 void read_synthesis(const Section& synthesis, reference::OceanCase& ocean) {
@@ -749,7 +950,7 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
   read_sampling(report, document, out);
   read_time(section("time"), out.ocean);
   read_physics(section("physics"), out.ocean);
-  read_sea(report, section("spectrum"), section("spreading"), out);
+  read_sea(report, document, out);
   read_synthesis(section("synthesis"), out.ocean);
   // [input]: the frames' pattern, one channel (or file suffix) per field provided.
   out.input = read_input(report, section("input"));
@@ -869,16 +1070,37 @@ std::string case_toml(const CaseFile& case_file) {
   out += fmt::format("[physics]\ngravity = {}\ndepth = {}\n\n", toml_number(c.gravity),
                      std::isinf(c.depth) && c.depth > 0 ? "\"inf\"" : toml_number(c.depth));
 
-  const bool direction_in_spectrum = c.spreading.model.empty();
-  out += fmt::format("[spectrum]\nmodel = {}\nscale = \"{}\"\n", toml_string(c.spectrum.model),
-                     case_file.scale == SpectrumScale::free ? "free" : "absolute");
-  write_parameters(out, c.spectrum);
-  if (direction_in_spectrum) out += fmt::format("wind_dir_deg = {}\n", toml_number(c.wind_dir_deg));
-  out += "\n";
-  if (!direction_in_spectrum) {
-    out += fmt::format("[spreading]\nmodel = {}\n", toml_string(c.spreading.model));
-    write_parameters(out, c.spreading);
-    out += fmt::format("wind_dir_deg = {}\n\n", toml_number(c.wind_dir_deg));
+  // One component as [spectrum] + [spreading]; a composite sea as [[spectrum]] tables, each
+  // followed by its [spectrum.spreading].
+  const auto components = c.components();
+  const bool composite = components.size() > 1;
+  for (std::size_t i = 0; i < components.size(); ++i) {
+    const auto& part = components[i];
+    // The direction of a sea without a spreading model: phillips's own; a 2-D table has none.
+    const bool direction_in_spectrum = part.spreading.model.empty() && !part.table;
+    out += fmt::format("{}\nmodel = {}\n", composite ? "[[spectrum]]" : "[spectrum]",
+                       toml_string(part.spectrum.model));
+    if (i == 0) {
+      out += fmt::format("scale = \"{}\"\n",
+                         case_file.scale == SpectrumScale::free ? "free" : "absolute");
+    }
+    write_parameters(out, part.spectrum);
+    if (part.energy_factor != 1) {
+      out += fmt::format("energy_factor = {}\n", toml_number(part.energy_factor));
+    }
+    if (part.short_wave_fade != 0) {
+      out += fmt::format("short_wave_fade = {}\n", toml_number(part.short_wave_fade));
+    }
+    if (direction_in_spectrum) {
+      out += fmt::format("wind_dir_deg = {}\n", toml_number(part.wind_dir_deg));
+    }
+    out += "\n";
+    if (!part.spreading.model.empty()) {
+      out += fmt::format("{}\nmodel = {}\n", composite ? "[spectrum.spreading]" : "[spreading]",
+                         toml_string(part.spreading.model));
+      write_parameters(out, part.spreading);
+      out += fmt::format("wind_dir_deg = {}\n\n", toml_number(part.wind_dir_deg));
+    }
   }
 
   const std::string seed =

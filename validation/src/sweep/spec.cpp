@@ -67,8 +67,52 @@ std::vector<std::string> model_keys(const toml::table& document, const std::stri
 }
 
 // Where a bare key goes: the base case's own key first, then the vocabulary of every section.
+// The component index of a composite sea's "spectrum.N…" path, if `name` is one.
+std::optional<std::size_t> component_index(const std::string& name) {
+  if (name.rfind("spectrum.", 0) != 0) return std::nullopt;
+  const auto end = name.find('.', 9);
+  const std::string digits = name.substr(9, end == std::string::npos ? std::string::npos : end - 9);
+  if (digits.empty() || !std::all_of(digits.begin(), digits.end(), ::isdigit)) return std::nullopt;
+  return std::stoul(digits);
+}
+
 std::pair<std::string, std::string> resolve_key(const std::string& name, const toml::table& document,
                                                 const std::string& spec) {
+  // A composite sea's component: spectrum.N.KEY, or spectrum.N.spreading.KEY.
+  if (const auto index = component_index(name)) {
+    const auto* components = document["spectrum"].as_array();
+    if (!components) {
+      throw InvalidInput(fmt::format("--vary {}: the case's sea has one component ([spectrum]); "
+                                     "spectrum.N.KEY names a component of a composite sea "
+                                     "([[spectrum]] tables)", spec));
+    }
+    if (*index >= components->size()) {
+      throw InvalidInput(fmt::format("--vary {}: the case's sea has {} components (spectrum.0 … "
+                                     "spectrum.{})", spec, components->size(),
+                                     components->size() - 1));
+    }
+    const auto last = name.rfind('.');
+    const std::string section = name.substr(0, last), key = name.substr(last + 1);
+    const auto depth = std::count(name.begin(), name.end(), '.');
+    if (key.empty() || depth > 3 || (depth == 3 && section.substr(section.rfind('.') + 1) != "spreading") ||
+        depth < 2) {
+      throw InvalidInput(fmt::format("--vary {}: '{}' is not a component key (write spectrum.N.KEY "
+                                     "or spectrum.N.spreading.KEY, such as spectrum.1.hs)", spec, name));
+    }
+    return {section, key};
+  }
+  if (const auto* components = document["spectrum"].as_array(); components && name.find('.') == std::string::npos) {
+    for (const auto& component : *components) {
+      const auto* table = component.as_table();
+      const auto* spreading = table ? table->get_as<toml::table>("spreading") : nullptr;
+      if ((table && table->contains(name)) || (spreading && spreading->contains(name))) {
+        throw InvalidInput(fmt::format("--vary {}: '{}' is a key of the components of a composite "
+                                       "sea; name one: spectrum.N.{} or spectrum.N.spreading.{} "
+                                       "(N = 0 … {})", spec, name, name, name,
+                                       components->size() - 1));
+      }
+    }
+  }
   const auto dot = name.find('.');
   if (dot != std::string::npos) {
     const std::string section = name.substr(0, dot), key = name.substr(dot + 1);
@@ -324,8 +368,18 @@ Point make_point(const SweepSpec& spec, std::size_t index) {
     const std::string& literal = variation.toml_values[point.value_index[v]];
     // The value parsed by toml++ itself, so that its type is TOML's reading of the literal.
     toml::table value = toml::parse("value = " + literal);
-    if (!document.contains(variation.section)) document.insert(variation.section, toml::table{});
-    toml::table* section = document[variation.section].as_table();
+    toml::table* section = nullptr;
+    if (const auto component = component_index(variation.section)) {
+      // spectrum.N or spectrum.N.spreading of a composite sea (resolve_key checked N).
+      section = document["spectrum"][*component].as_table();
+      if (section && variation.section.ends_with(".spreading")) {
+        if (!section->contains("spreading")) section->insert("spreading", toml::table{});
+        section = (*section)["spreading"].as_table();
+      }
+    } else {
+      if (!document.contains(variation.section)) document.insert(variation.section, toml::table{});
+      section = document[variation.section].as_table();
+    }
     if (!section) {
       throw InvalidInput(fmt::format("--vary {}: '{}' in the case is not a section", variation.name,
                                      variation.section));

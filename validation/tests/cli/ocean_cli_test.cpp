@@ -632,3 +632,80 @@ wind_speed = 10.0
 }  // namespace
 
 // ==================================================================== end of swell fit
+
+// ---------------------------------------------------------------- any sea an engine is asked for
+
+namespace {
+
+const fs::path kCases = fs::path(SWELL_TEST_DATA_DIR) / "cases";
+
+// swell synth then swell gate, from the command line, on every form of sea a case can declare:
+// a composite wind sea plus swell, Torsethaugen, Horvath with swell and blend, a netCDF table and
+// an NDBC hour (data/cases/). Eight frames each: what the gate needs for every check.
+TEST_F(OceanCli, SynthThenGatePassOnEveryFormOfSea) {
+  for (const char* name : {"wind_sea_and_swell", "torsethaugen", "horvath_swell_blend",
+                           "twopeak_table", "ndbc_41010_hour"}) {
+    SCOPED_TRACE(name);
+    const std::string out = path(name);
+    const CliRun synth = swell("synth --case " + (kCases / (std::string(name) + ".toml")).string() +
+                               " --impl fftw --frames 8 --out " + out);
+    ASSERT_EQ(synth.exit_code, 0) << synth.output;
+    const CliRun gate = swell("gate --case " + out + "/case.toml");
+    EXPECT_EQ(gate.exit_code, 0) << gate.output;
+    EXPECT_TRUE(contains(gate.output, "verdict: PASS")) << gate.output;
+  }
+}
+
+// swell spectrum --case prints each component and the sum, whose m0 is theirs added.
+TEST_F(OceanCli, SpectrumOfACaseShowsEachComponentAndTheSum) {
+  const CliRun run = swell("spectrum --case " + (kCases / "wind_sea_and_swell.toml").string() +
+                           " --json -");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto document = nlohmann::json::parse(run.output);
+  ASSERT_EQ(document["components"].size(), 2u);
+  EXPECT_EQ(document["components"][0]["model"], "jonswap");
+  EXPECT_EQ(document["components"][1]["model"], "gaussian");
+  const double m0 = document["moments"]["m0"].get<double>();
+  const double parts = document["components"][0]["moments"]["m0"].get<double>() +
+                       document["components"][1]["moments"]["m0"].get<double>();
+  EXPECT_NEAR(m0, parts, 2e-9 * m0);
+  // Each component's m0 is its Hs²/16 (the Gaussian's cut at ω = 0 is Φ(ωp/σ) = 1 − 1e-70 here).
+  EXPECT_NEAR(document["components"][0]["moments"]["m0"].get<double>(), 2.5 * 2.5 / 16, 1e-8);
+  EXPECT_NEAR(document["components"][1]["moments"]["m0"].get<double>(), 1.5 * 1.5 / 16, 1e-8);
+  const CliRun text = swell("spectrum --case " + (kCases / "wind_sea_and_swell.toml").string());
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_TRUE(contains(text.output, "component 1: gaussian")) << text.output;
+  EXPECT_TRUE(contains(text.output, "moments of the sea, the sum of its components")) << text.output;
+  expect_refusal(swell("spectrum --case " + (kCases / "wind_sea_and_swell.toml").string() + " --hs 2"),
+                 {"--hs with --case"});
+}
+
+// A missing energy factor is named as the product of convention factors it is: frames made at
+// 8 × the declared energy (energy_factor = 8 in the synthesized case) judged against the case
+// without it.
+TEST_F(OceanCli, AnUndeclaredEnergyFactorIsNamedAsItsProduct) {
+  std::string text;
+  {
+    std::ifstream in(kCases / "jonswap_deep.toml");
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const auto at = text.find("gamma = 3.3");
+  ASSERT_NE(at, std::string::npos);
+  std::string declared = text;
+  declared.insert(at, "energy_factor = 8.0\n");
+  std::ofstream(path("eight.toml")) << declared;
+  const CliRun synth = swell("synth --case " + path("eight.toml") + " --impl fftw --frames 4 --n 128 --out " + path("out"));
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  // Judged as declared: passes.
+  EXPECT_EQ(swell("gate --case " + path("out") + "/case.toml").exit_code, 0);
+  // Judged without the factor: the energy check names × 8 = 2 × 2 × 2 and the key to declare.
+  auto plain = swell::validation::read_case_file(dir_ / "out" / "case.toml");
+  plain.ocean.energy_factor = 1;
+  swell::validation::write_case_file(dir_ / "out" / "plain.toml", plain);  // beside its frames
+  const CliRun gate = swell("gate --case " + path("out/plain.toml"));
+  EXPECT_EQ(gate.exit_code, 1) << gate.output;
+  EXPECT_TRUE(contains(gate.output, "× 8 = 2 × 2 × 2")) << gate.output;
+  EXPECT_TRUE(contains(gate.output, "energy_factor = 8")) << gate.output;
+}
+
+}  // namespace

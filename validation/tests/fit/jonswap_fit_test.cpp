@@ -692,6 +692,32 @@ TEST(JonswapFitInput, PhillipsIsNotInTheFamily) {
                InvalidInput);
 }
 
+TEST(JonswapFitInput, CompositeSeasAndDeclaredFactorsAreRefusedByName) {
+  const auto c = coverage_case(64, 400);
+  const auto frames = frames_of(c);
+  auto refusal = [&](const OceanCase& sea) {
+    try {
+      (void)swell::validation::case_jonswap_parameters(sea);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  auto composite = c;
+  auto swell_part = c.components().front();
+  swell_part.wind_dir_deg += 45;
+  composite.more_components = {swell_part};
+  EXPECT_NE(refusal(composite).find("composite sea of 2 components"), std::string::npos)
+      << refusal(composite);
+  EXPECT_THROW(swell::validation::fit_jonswap(composite, {frames}), InvalidInput);
+  auto factor = c;
+  factor.energy_factor = 8;
+  EXPECT_NE(refusal(factor).find("energy_factor = 8"), std::string::npos) << refusal(factor);
+  auto fade = c;
+  fade.short_wave_fade = 0.1;
+  EXPECT_NE(refusal(fade).find("short_wave_fade"), std::string::npos) << refusal(fade);
+}
+
 TEST(JonswapFitInput, FramesWithoutHeight) {
   const auto c = coverage_case(64, 400);
   auto frames = frames_of(c);

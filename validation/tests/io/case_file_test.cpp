@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "swell/reference/errors.hpp"
+#include "swell/reference/moments.hpp"
 #include "swell/validation/io/case_file.hpp"
 
 namespace {
@@ -80,17 +81,25 @@ void expect_same(const CaseFile& a, const CaseFile& b) {
   EXPECT_EQ(x.frames, y.frames);
   EXPECT_EQ(bits(x.gravity), bits(y.gravity));
   EXPECT_EQ(bits(x.depth), bits(y.depth)) << x.depth << " vs " << y.depth;
-  for (const auto& [p, q] : {std::pair{&x.spectrum, &y.spectrum}, std::pair{&x.spreading, &y.spreading}}) {
-    EXPECT_EQ(p->model, q->model);
-    EXPECT_EQ(p->choices, q->choices);
-    ASSERT_EQ(p->numbers.size(), q->numbers.size()) << p->model;
-    for (const auto& [name, value] : p->numbers) {
-      ASSERT_TRUE(q->numbers.count(name)) << name;
-      EXPECT_EQ(bits(value), bits(q->numbers.at(name))) << name << ": " << value << " vs "
-                                                        << q->numbers.at(name);
+  const auto xs = x.components(), ys = y.components();
+  ASSERT_EQ(xs.size(), ys.size());
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    for (const auto& [p, q] : {std::pair{&xs[i].spectrum, &ys[i].spectrum},
+                               std::pair{&xs[i].spreading, &ys[i].spreading}}) {
+      EXPECT_EQ(p->model, q->model);
+      EXPECT_EQ(p->choices, q->choices);
+      ASSERT_EQ(p->numbers.size(), q->numbers.size()) << p->model;
+      for (const auto& [name, value] : p->numbers) {
+        ASSERT_TRUE(q->numbers.count(name)) << name;
+        EXPECT_EQ(bits(value), bits(q->numbers.at(name))) << name << ": " << value << " vs "
+                                                          << q->numbers.at(name);
+      }
     }
+    EXPECT_EQ(bits(xs[i].wind_dir_deg), bits(ys[i].wind_dir_deg))
+        << xs[i].wind_dir_deg << " vs " << ys[i].wind_dir_deg;
+    EXPECT_EQ(bits(xs[i].energy_factor), bits(ys[i].energy_factor));
+    EXPECT_EQ(bits(xs[i].short_wave_fade), bits(ys[i].short_wave_fade));
   }
-  EXPECT_EQ(bits(x.wind_dir_deg), bits(y.wind_dir_deg)) << x.wind_dir_deg << " vs " << y.wind_dir_deg;
   EXPECT_EQ(bits(x.choppiness), bits(y.choppiness)) << x.choppiness << " vs " << y.choppiness;
   EXPECT_EQ(bits(x.loop_period), bits(y.loop_period));
   EXPECT_EQ(x.seed, y.seed);
@@ -221,7 +230,8 @@ TEST(CaseFile, EveryExampleInTheDocsParses) {
       inside = false;
       ++blocks;
       SCOPED_TRACE("block ending at docs/case_files.md:" + std::to_string(number));
-      EXPECT_NO_THROW((void)parse_case_toml(block, "case_files.md")) << block;
+      // Read as if written in docs/: a table's file is relative to it.
+      EXPECT_NO_THROW((void)parse_case_toml(block, doc)) << block;
     } else if (inside) {
       block += line + "\n";
     }
@@ -317,6 +327,25 @@ std::vector<std::pair<std::string, CaseFile>> round_trip_cases() {
     c.ocean.wind_dir_deg = -0.0;
     c.ocean.choppiness = 1.7976931348623157e308;
     cases.emplace_back("awkward_doubles", c);
+  }
+  {
+    // A composite sea: a wind sea with an energy factor and a fade, a swell, and a phillips
+    // component (its direction in its own table).
+    CaseFile c = base_case();
+    swell::reference::SeaComponent wind, swell_part, phillips;
+    wind.spectrum = {"jonswap", {{"hs", 2.5}, {"tp", 7.0}, {"gamma", 3.3}}, {}};
+    wind.spreading = {"cos2s", {{"s", 10.0}}, {}};
+    wind.wind_dir_deg = 30;
+    wind.energy_factor = 8;
+    wind.short_wave_fade = 0.05;
+    swell_part.spectrum = {"bretschneider", {{"hs", 1.5}, {"tp", 14.0}}, {}};
+    swell_part.spreading = {"cos2s", {{"s", 40.0}}, {}};
+    swell_part.wind_dir_deg = 75;
+    phillips.spectrum = {"phillips", {{"amplitude", 3e-4}, {"wind_speed", 12.0}}, {}};
+    phillips.wind_dir_deg = -20;
+    c.ocean.set_components({wind, swell_part, phillips});
+    c.scale = SpectrumScale::free;
+    cases.emplace_back("composite_three_components", c);
   }
   return cases;
 }
@@ -613,3 +642,99 @@ gamma = 2.0
 }
 
 }  // namespace
+
+// ------------------------------------------------------------------ composite seas
+
+const char* const kCompositeExample = R"(
+[grid]
+n = [64, 64]
+length = [200.0, 200.0]
+[time]
+dt = 0.5
+frames = 4
+[[spectrum]]              # component 0: wind sea
+model = "jonswap"
+hs = 2.5
+tp = 7.0
+gamma = 3.3
+[spectrum.spreading]
+model = "cos2s"
+s = 10.0
+wind_dir_deg = 30.0
+[[spectrum]]              # component 1: swell
+model = "bretschneider"
+hs = 1.5
+tp = 14.0
+energy_factor = 2.0
+[spectrum.spreading]
+model = "cos2s"
+s = 40.0
+wind_dir_deg = 75.0
+[synthesis]
+seed = 3
+)";
+
+TEST(CaseFileComposite, ComponentsAreReadInOrderWithTheirOwnSpreadingAndDirection) {
+  const CaseFile c = parse_case_toml(kCompositeExample, "composite.toml");
+  const auto parts = c.ocean.components();
+  ASSERT_EQ(parts.size(), 2u);
+  EXPECT_EQ(parts[0].spectrum.model, "jonswap");
+  EXPECT_EQ(parts[0].spectrum.numbers.at("gamma"), 3.3);
+  EXPECT_EQ(parts[0].spreading.numbers.at("s"), 10.0);
+  EXPECT_EQ(parts[0].wind_dir_deg, 30.0);
+  EXPECT_EQ(parts[0].energy_factor, 1.0);
+  EXPECT_EQ(parts[1].spectrum.model, "bretschneider");
+  EXPECT_EQ(parts[1].spreading.numbers.at("s"), 40.0);
+  EXPECT_EQ(parts[1].wind_dir_deg, 75.0);
+  EXPECT_EQ(parts[1].energy_factor, 2.0);
+  EXPECT_TRUE(c.ocean.is_composite());
+  // The sea's m0 is the wind sea's Hs²/16 plus twice the swell's.
+  const double m0 = swell::reference::spectral_moment(c.ocean.sea_spectrum()->omnidirectional(), 0);
+  EXPECT_NEAR(m0, (2.5 * 2.5 + 2 * 1.5 * 1.5) / 16, 2e-9 * m0);
+}
+
+TEST(CaseFileComposite, OneComponentInBracketsIsTheOneComponentCase) {
+  std::string one = kCompositeExample;
+  one = one.substr(0, one.find("[[spectrum]]              # component 1"));
+  one += "[synthesis]\nseed = 3\n";
+  const CaseFile c = parse_case_toml(one, "one.toml");
+  EXPECT_FALSE(c.ocean.is_composite());
+  EXPECT_EQ(c.ocean.spectrum.model, "jonswap");
+  EXPECT_EQ(c.ocean.wind_dir_deg, 30.0);
+}
+
+TEST(CaseFileComposite, MistakesAreNamedWithTheComponent) {
+  const std::string base = kCompositeExample;
+  auto expect_refused = [](const std::string& text, std::vector<std::string> fragments) {
+    try {
+      (void)parse_case_toml(text, "bad.toml");
+      ADD_FAILURE() << "accepted:\n" << text;
+    } catch (const InvalidInput& e) {
+      for (const auto& f : fragments) {
+        EXPECT_NE(std::string(e.what()).find(f), std::string::npos) << e.what() << "\nmissing: " << f;
+      }
+    }
+  };
+  auto replace = [&](const std::string& from, const std::string& to) {
+    std::string t = base;
+    const auto at = t.find(from);
+    if (at == std::string::npos) throw std::logic_error(from);
+    return t.replace(at, from.size(), to);
+  };
+  // A top-level [spreading] beside [[spectrum]] tables.
+  expect_refused(base + "[spreading]\nmodel = \"cos2s\"\ns = 5.0\n", {"bad.toml", "[spreading]", "[spectrum.spreading]"});
+  // scale belongs to the whole sea: only in the first component.
+  expect_refused(replace("energy_factor = 2.0", "scale = \"free\""), {"bad.toml", "spectrum 1", "scale", "first"});
+  // An unknown key in a component's spreading names that component.
+  expect_refused(replace("s = 40.0", "s = 40.0\nspread = 3.0"), {"bad.toml", "spectrum 1.spreading", "spread"});
+  // A bad energy factor.
+  expect_refused(replace("energy_factor = 2.0", "energy_factor = 0.0"), {"bad.toml", "spectrum 1", "energy_factor"});
+  // A component without a model.
+  expect_refused(replace("model = \"bretschneider\"\n", ""), {"bad.toml", "spectrum 1", "model"});
+  // A component's parameters are its model's.
+  expect_refused(replace("tp = 14.0", "tp = 14.0\ngamma = 2.0"), {"bad.toml", "spectrum 1", "gamma"});
+  // spreading must be a table.
+  expect_refused(replace("[spectrum.spreading]\nmodel = \"cos2s\"\ns = 40.0\nwind_dir_deg = 75.0",
+                         "spreading = 3.0"),
+                 {"bad.toml", "spectrum 1", "spreading"});
+}

@@ -71,6 +71,8 @@ std::vector<Model> all_models(double wp) {
   m.push_back({"hasselmann", sr::Cos2s::hasselmann(wp)});
   m.push_back({"hasselmann age 2.5", sr::Cos2s::hasselmann(wp, 2.5)});
   m.push_back({"donelan-banner", sr::DonelanBanner::create(wp)});
+  m.push_back({"horvath", sr::Horvath::create(wp)});
+  m.push_back({"horvath swell 1.2 blend 0.3 age 0.9", sr::Horvath::create(wp, {0.9, 1.2, 0.3})});
   for (double p : {1.0, 2.0, 2.7, 8.0}) {
     m.push_back({"cos-power " + std::to_string(p), sr::CosPower::create(p)});
     m.push_back({"cos-power one-sided " + std::to_string(p), sr::CosPower::create(p, true)});

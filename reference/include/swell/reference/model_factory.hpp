@@ -37,8 +37,9 @@ std::vector<ParameterInfo> model_parameters(const std::string& model);
 // omnidirectional S(ω) under the dispersion of "depth" and "gravity".
 FrequencySpectrumPtr make_frequency_spectrum(const ModelSpec& spec);
 
-// A spreading model ("cos2s", "mitsuyasu", "hasselmann", "donelan-banner", "cos-power") about
-// a spectrum whose peak is omega_p.
+// A spreading model ("cos2s", "mitsuyasu", "hasselmann", "donelan-banner", "cos-power",
+// "horvath") about a spectrum whose peak is omega_p. A case that knows its wind speed U10 gives
+// horvath its wave_age as Horvath::wave_age(U10, omega_p, dispersion).
 SpreadingPtr make_spreading(const ModelSpec& spec, double omega_p);
 
 // The dispersion relation a spec implies: "depth" (default ∞) and "gravity" (default 9.81).

@@ -3,7 +3,7 @@
 // frequency: m_n = ∫ ω^n S(ω) dω; Hs = 4 √m0; Tp = 2π/ωp; Tm01 = 2π m0/m1;
 // Tm02 = 2π √(m0/m2); Te = Tm−10 = 2π m−1/m0; ε4 = √(1 − m2²/(m0 m4));
 // ν = √(m0 m2/m1² − 1) (Longuet-Higgins 1975). A moment that diverges (m4 of an ω⁻⁵ tail over
-// the whole spectrum) is +∞; ε4 then takes its limit, 1.
+// the whole spectrum, m−1 of a spectrum with S(0⁺) > 0) is +∞; ε4 then takes its limit, 1.
 #include <limits>
 #include <vector>
 

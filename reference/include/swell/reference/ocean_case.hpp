@@ -13,8 +13,26 @@
 #include "swell/reference/grid.hpp"
 #include "swell/reference/sampling.hpp"
 #include "swell/reference/model_factory.hpp"
+#include "swell/reference/spectrum_table.hpp"
 
 namespace swell::reference {
+
+// One component of a sea (docs/case_files.md §Composite seas): its frequency spectrum, its
+// spreading about its own mean direction, the energy factor its engine declares, and its
+// short-wave fade.
+struct SeaComponent {
+  ModelSpec spectrum;
+  ModelSpec spreading;      // empty model for phillips, which carries its own directionality
+  double wind_dir_deg = 0;  // θw, degrees counter-clockwise from +x, direction of travel
+  // F: the engine knowingly makes F times the declared energy (its own convention, e.g. 8 for
+  // unit-variance real and imaginary parts with a √2 on the amplitude and both halves of each
+  // ±k pair at full variance); Ψ is F times the model's.
+  double energy_factor = 1;
+  double short_wave_fade = 0;  // l, m: Ψ·e^(−k²l²) (0: none)
+  // A tabulated spectrum (spectrum.model "table" or "ndbc"), read from its files once: a 2-D
+  // E(ω, θ) is the component's Ψ itself (no spreading); a 1-D S(ω) takes the spreading above.
+  std::shared_ptr<const SpectrumTable> table;
+};
 
 struct OceanCase {
   // The samples: a grid, or (lattice set) a 2-D rank-1 lattice over grid.lx × grid.ly, when
@@ -35,12 +53,23 @@ struct OceanCase {
   double gravity = kStandardGravity;  // m/s²
   double depth = kInfiniteDepth;      // m
 
+  // The sea: component 0 in the five fields below (what a one-component case is), and the
+  // further components of a composite sea in more_components; their Ψ add.
   // Frequency spectrum by name and parameters (model_factory.hpp vocabulary), without the
   // common parameters gravity, depth and wind_dir, which the case holds once for all models.
   ModelSpec spectrum;
   // Spreading model; empty model name for phillips, which carries its own directionality.
   ModelSpec spreading;
   double wind_dir_deg = 0;  // θw, degrees counter-clockwise from +x, direction of travel
+  double energy_factor = 1;    // SeaComponent::energy_factor
+  double short_wave_fade = 0;  // SeaComponent::short_wave_fade, m
+  std::shared_ptr<const SpectrumTable> table;  // SeaComponent::table
+  std::vector<SeaComponent> more_components;
+  // Every component, component 0 first.
+  std::vector<SeaComponent> components() const;
+  bool is_composite() const { return !more_components.empty(); }
+  // Replaces the sea by `components` (at least one).
+  void set_components(const std::vector<SeaComponent>& components);
 
   double choppiness = 1;   // λ: stored displacement is λD (conventions §Derived fields)
   double loop_period = 0;  // s; 0 = none, else ω is quantized down to multiples of 2π/T
@@ -68,8 +97,12 @@ struct OceanCase {
   DirectionalSpectrumPtr directional_spectrum() const;
   // Ψ(k) of the whole sea, without band weights.
   DirectionalSpectrumPtr sea_spectrum() const;
-  // The spectrum spec with gravity, depth and wind_dir filled in, as model_factory takes it.
+  // Component 0's spectrum spec with gravity, depth and wind_dir filled in, as model_factory
+  // takes it; full_spectrum_spec(c) for any component.
   ModelSpec full_spectrum_spec() const;
+  ModelSpec full_spectrum_spec(const SeaComponent& component) const;
+  // Ψ(k) of one component, its energy factor and fade applied.
+  DirectionalSpectrumPtr component_spectrum(const SeaComponent& component) const;
   std::string describe() const;  // "jonswap hs=3 tp=8 gamma=3.3 + cos2s s=10, 256×256 over 200×200 m"
 };
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "swell/reference/dispersion.hpp"
 #include "swell/reference/frequency_spectrum.hpp"
 
 namespace swell::reference {
@@ -78,6 +79,43 @@ class CosPower final : public Spreading {
   double p_;
   bool one_sided_;
   double normalization_;
+};
+
+// Horvath (2015), "Empirical directional wave spectra for computer graphics", DigiPro '15: the
+// Hasselmann cos-2s spreading with the paper's branch at ωp, the swell elongation and a blend
+// toward a uniform spread,
+//   s(ω)   = 6.97 (ω/ωp)^4.06                                   for ω ≤ ωp,
+//            9.77 (ω/ωp)^(−2.33 − 1.45 (U10/cp − 1.17))          for ω > ωp,
+//   s_ξ(ω) = 16 tanh(ωp/ω) ξ²,
+//   D(ω, θ) = (1 − b) G(s + s_ξ) cos^(2(s + s_ξ))(θ/2) + b/(2π),   G = Cos2s::normalization.
+// ξ ≥ 0 (swell) elongates the long waves into parallel crests; b ∈ [0, 1] (spread_blend) mixes
+// in a uniform spread; U10/cp is the wave age at the peak. Cos2s::hasselmann is the same law
+// with Hasselmann et al.'s own branch at 1.05 ωp. Where the shipped Godot and Unity FFT oceans
+// differ (normalization, blend sense, angle origin): docs/conventions.md §3.4.
+struct HorvathParameters {
+  double wave_age = 1.17;   // U10/cp at the peak (Hasselmann's fully developed sea)
+  double swell = 0;         // ξ, dimensionless, ≥ 0
+  double spread_blend = 0;  // b, weight of the uniform spread, in [0, 1]
+};
+
+class Horvath final : public Spreading {
+ public:
+  using Parameters = HorvathParameters;
+  static std::shared_ptr<const Horvath> create(double omega_p, Parameters parameters = {});
+  // U10/cp at the peak, cp = ωp/kp the phase speed at ωp under `dispersion` (kp = k(ωp)): the
+  // case's own depth, not only deep water. Deep water gives U10 ωp/g, the paper's form.
+  static double wave_age(double u10, double omega_p, const Dispersion& dispersion);
+
+  double operator()(double omega, double theta) const override;
+  double s(double omega) const;            // Hasselmann's exponent, branch at ωp
+  double swell_exponent(double omega) const;  // s_ξ = 16 tanh(ωp/ω) ξ²
+  std::string name() const override { return "horvath"; }
+  std::vector<Parameter> parameters() const override;
+
+ private:
+  Horvath(double omega_p, Parameters parameters);
+  double omega_p_;
+  Parameters parameters_;
 };
 
 // θ wrapped to (−π, π].

@@ -105,6 +105,14 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
   if (p < alpha) {
     if (std::abs(turn) > 135) {
       diagnosis = " — waves travel against the wind (time reversed or e^(+iωt) on h̃0(k))";
+    } else if (const double mirrored = std::remainder(theta_measured - (270.0 - theta_expected), 360.0);
+               std::abs(mirrored) < 15 && std::abs(turn) > 15) {
+      // θ ↦ 270° − θ maps nautical "coming from" directions to swell's "toward, counter-clockwise
+      // from +x" and back: one applied too few or too many times mirrors the sea this way.
+      diagnosis = fmt::format(" — the mean direction is the case's mirrored, 270° − {:.1f}°: "
+                              "directions where the waves come from (clockwise from north) read "
+                              "as where they travel (counter-clockwise from +x), or the reverse "
+                              "(a table's direction_convention)", theta_expected);
     } else if (std::abs(measured_resultant) < 0.25 * std::abs(expected_resultant)) {
       diagnosis = " — as much energy travels along −k as along +k: standing waves";
     } else {

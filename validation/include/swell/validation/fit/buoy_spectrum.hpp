@@ -1,91 +1,17 @@
 #pragma once
-// Measured 1-D wave spectra from NDBC buoys (docs/buoy_fit.md): the spectral-density file
-// (`*.data_spec`: `YY MM DD hh mm Sep_Freq  S1 (f1) S2 (f2) …`, S in m²/Hz, one record an hour),
-// the hourly summary (`*.spec`: WVHT, SwH, SwP, WWH, WWP, SwD, WWD, STEEPNESS, APD, MWD; "MM"
-// means missing), each record paired with its summary by hour (spectra are stamped :50,
-// summaries :40 of the same hour), the bands' widths, and the moments of a spectrum.
+// Measured 1-D wave spectra from NDBC buoys for the fit (docs/buoy_fit.md): the moments of a
+// spectrum on its bands, 4√m0 against the summary's WVHT, and each spectral record paired with
+// its summary by hour (spectra are stamped :50, summaries :40 of the same hour). The files'
+// readers, BuoyHour and the band table live in the io room (io/ndbc_files.hpp), which this header
+// includes, so that every user of the fit finds them here as well.
 //
 // Frequencies in this file are in Hz (NDBC's unit), labelled as such; swell's angular moments
 // (docs/conventions.md) are not used here.
-#include <optional>
-#include <string>
 #include <vector>
 
+#include "swell/validation/io/ndbc_files.hpp"
+
 namespace swell::validation {
-
-// The hour a record belongs to (UTC); minutes are kept apart because the two files stamp the
-// same hour differently.
-struct BuoyHour {
-  int year = 0, month = 0, day = 0, hour = 0;
-  auto operator<=>(const BuoyHour&) const = default;
-  long key() const { return ((long(year) * 100 + month) * 100 + day) * 100 + hour; }
-  std::string iso() const;  // "2020-06-01T03:00Z"
-  // Hours since 2000-01-01T00Z (proleptic Gregorian), for plotting and differences.
-  double hours_since_2000() const;
-};
-
-struct BuoySpectrumRecord {
-  BuoyHour time;
-  int minute = 0;
-  double separation_frequency = 0;  // Hz, NDBC's swell/wind-sea split (NaN when "MM")
-  std::vector<double> density;      // m²/Hz per band as printed (NaN when "MM")
-  int line = 0;                     // 1-based line in the file
-};
-
-struct BuoySpectrumFile {
-  std::string path;
-  std::vector<double> frequency;  // Hz, the band centres as printed (3 decimals in NDBC files)
-  std::vector<BuoySpectrumRecord> records;  // in file order (NDBC writes newest first)
-};
-
-// Reads an NDBC spectral-density file. Lines starting with '#' are headers. Every record must
-// list the same frequencies. Throws InvalidInput naming the file, the line and the field for a
-// file that cannot be opened, a malformed or negative value, a record whose frequencies differ
-// from the first one's, or a file without records.
-BuoySpectrumFile read_ndbc_spectral_density(const std::string& path);
-
-struct BuoySummaryRecord {
-  BuoyHour time;
-  int minute = 0;
-  // NaN where the file says "MM" or the column is absent.
-  double wvht = 0;            // m, significant wave height (4√m0), rounded to 0.1 m
-  double swell_height = 0;    // SwH, m
-  double swell_period = 0;    // SwP, s
-  double wind_sea_height = 0; // WWH, m
-  double wind_sea_period = 0; // WWP, s
-  double average_period = 0;  // APD, s
-  double mean_direction = 0;  // MWD, degrees true
-  std::string swell_direction, wind_sea_direction, steepness;  // as printed ("" if missing)
-  int line = 0;
-};
-
-// Reads an NDBC hourly summary (`.spec`); the columns are found by the names in its first header
-// line (#YY MM DD hh mm WVHT SwH SwP WWH WWP SwD WWD STEEPNESS APD MWD). Throws InvalidInput as
-// the spectral reader does.
-std::vector<BuoySummaryRecord> read_ndbc_summary(const std::string& path);
-
-// How the band widths were obtained.
-enum class BandConvention {
-  ndbc_wpm_table,  // NDBC's WPM band table (centres 0.0325…0.0925 Hz by 0.005, 0.100…0.350 by
-                   // 0.01, 0.365…0.485 by 0.02; https://www.ndbc.noaa.gov/faq/wavespectra.shtml)
-  midpoints,       // edges halfway between neighbouring centres, the end bands symmetric
-};
-const char* band_convention_name(BandConvention convention);
-
-struct SpectralBands {
-  std::vector<double> centre;  // Hz (the table's exact centre where the table applies)
-  std::vector<double> width;   // Hz, Δf_j
-  BandConvention convention = BandConvention::midpoints;
-  double low_edge(std::size_t j) const { return centre[j] - 0.5 * width[j]; }
-  double high_edge(std::size_t j) const { return centre[j] + 0.5 * width[j]; }
-};
-
-// The bands of printed centre frequencies: NDBC's WPM table when the printed centres are the
-// table's 46 (or 47, with the 0.0200 Hz band) centres to their printed rounding (±0.0006 Hz),
-// else midpoints between neighbours (or the convention forced by `convention`). Throws
-// InvalidInput for fewer than 2 or non-increasing frequencies.
-SpectralBands spectral_bands(const std::vector<double>& printed_frequency,
-                             std::optional<BandConvention> convention = std::nullopt);
 
 // Σ_j S_j f_j^n Δf_j (in m²·Hzⁿ); NaN if any band is missing.
 double spectral_moment_hz(const std::vector<double>& density, const SpectralBands& bands, int n);

@@ -22,6 +22,9 @@ struct GateReport {
   double unit_roundoff = 0;            // of the values read (FrameSequence::unit_roundoff)
   double seconds = 0;                  // wall time of reading and judging
   double read_seconds = 0;             // of which reading the case and its frames
+  // What the case's sea is, where a table made it: the share of the table's m0 the sampling
+  // carries, and what its reader did to it (clipped, renormalized). Empty for parametric seas.
+  std::vector<std::string> notes;
   bool passed() const;
 };
 
