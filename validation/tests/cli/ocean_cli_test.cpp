@@ -708,4 +708,78 @@ TEST_F(OceanCli, AnUndeclaredEnergyFactorIsNamedAsItsProduct) {
   EXPECT_TRUE(contains(gate.output, "energy_factor = 8")) << gate.output;
 }
 
+// Each declaration a table's file depends on, declared wrong, fails with a message naming the
+// key and the reading the frames follow: frames made from the two-peak netCDF table as it is
+// (Hz, nautical "from", per Hz per degree), judged against the same case with one key changed.
+// Degrees for radians is refused on reading (exit 2): the values contradict it.
+TEST_F(OceanCli, EachMisdeclaredTableConventionIsNamed) {
+  const CliRun synth = swell("synth --case " + (kCases / "twopeak_table.toml").string() +
+                             " --impl fftw --frames 8 --out " + path("out"));
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  std::string text;
+  {
+    std::ifstream in(dir_ / "out" / "case.toml");
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  auto with = [&](const std::string& line, const std::string& replacement) {
+    std::string changed = text;
+    const auto at = changed.find(line);
+    EXPECT_NE(at, std::string::npos) << line;
+    if (at != std::string::npos) changed.replace(at, line.size(), replacement);
+    return changed;
+  };
+  auto gate = [&](const std::string& name, const std::string& contents) {
+    std::ofstream(dir_ / "out" / name) << contents;  // beside its frames
+    return swell("gate --case " + path("out/" + name));
+  };
+  struct Slip {
+    const char* line;
+    const char* replacement;
+    std::vector<std::string> named;
+  };
+  const Slip slips[] = {
+      {"frequency_unit = \"Hz\"", "frequency_unit = \"rad/s\"",
+       {"frequencies in Hz, not rad/s as declared (frequency_unit)"}},
+      {"direction_convention = \"nautical_from\"", "direction_convention = \"toward_ccw_from_x\"",
+       {"directions as nautical_from, not toward_ccw_from_x as declared (direction_convention)",
+        "the mean direction is the case's mirrored"}},
+      {"density_unit = \"m2/Hz/deg\"", "density_unit = \"m2/Hz/rad\"",
+       {"(density_unit): energy × 57.3 = 180/π (per degree read as per radian)"}},
+  };
+  for (const Slip& slip : slips) {
+    SCOPED_TRACE(slip.replacement);
+    const CliRun run = gate("slip.toml", with(slip.line, slip.replacement));
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    for (const auto& named : slip.named) EXPECT_TRUE(contains(run.output, named)) << run.output;
+  }
+  expect_refusal(gate("radians.toml", with("direction_unit = \"deg\"", "direction_unit = \"rad\"")),
+                 {"direction_unit = \"rad\"", "deg"});
+  // The engine's slip, the case right: frames made with the directions read in the other
+  // convention, judged as the file declares them.
+  std::ofstream(dir_ / "out" / "slip_source.toml")
+      << with("direction_convention = \"nautical_from\"", "direction_convention = \"toward_ccw_from_x\"");
+  const CliRun engine = swell("synth --case " + path("out/slip_source.toml") +
+                              " --impl fftw --frames 8 --out " + path("mirrored"));
+  ASSERT_EQ(engine.exit_code, 0) << engine.output;
+  std::ofstream(dir_ / "mirrored" / "right.toml") << text;
+  const CliRun judged = swell("gate --case " + path("mirrored/right.toml"));
+  EXPECT_EQ(judged.exit_code, 1) << judged.output;
+  EXPECT_TRUE(contains(judged.output, "directions as toward_ccw_from_x, not nautical_from as declared"))
+      << judged.output;
+  // A factor no unit explains is not blamed on the table: frames at twice the energy
+  // (energy_factor = 2 in the synthesized case) are "twice the energy", not a density unit.
+  ASSERT_NE(text.find("[spectrum]\n"), std::string::npos);
+  std::string doubled = text;
+  doubled.insert(doubled.find("[spectrum]\n") + std::string("[spectrum]\n").size(), "energy_factor = 2.0\n");
+  std::ofstream(dir_ / "out" / "doubled_source.toml") << doubled;
+  const CliRun twice = swell("synth --case " + path("out/doubled_source.toml") + " --impl fftw --frames 8 --out " +
+                             path("doubled"));
+  ASSERT_EQ(twice.exit_code, 0) << twice.output;
+  std::ofstream(dir_ / "doubled" / "right.toml") << text;
+  const CliRun judged_twice = swell("gate --case " + path("doubled/right.toml"));
+  EXPECT_EQ(judged_twice.exit_code, 1) << judged_twice.output;
+  EXPECT_TRUE(contains(judged_twice.output, "twice the energy")) << judged_twice.output;
+  EXPECT_FALSE(contains(judged_twice.output, "the frames follow the table")) << judged_twice.output;
+}
+
 }  // namespace

@@ -86,6 +86,22 @@ struct WaveFit {
   double energy = 0, residual = 0;  // Σf |h̃|², Σf |h̃ − fit|²
 };
 
+// The spectrum.shape test of the normalized periodogram u = I/μ of independent Exp(1) ordinates:
+// sorted by |k| into rings of n wave vectors (at most 24, at least 64 each where there are that
+// many), Σu over a ring ~ Gamma(n, 1) exactly; the rings' two-sided p-values combine by
+// Fisher's method.
+struct RingShape {
+  double p = 1;                       // Fisher's combined p
+  int rings = 0;
+  double low_ratio = 1, high_ratio = 1;  // the least and greatest ring mean of u
+  double worst_ratio = 1, worst_k = 0, worst_p = 1;
+};
+struct NormalizedOrdinate {
+  double k = 0;  // |k|, rad/m
+  double u = 0;  // I(k)/μ(k)
+};
+RingShape ring_shape(std::vector<NormalizedOrdinate> ordinates);
+
 // Integer frames with a coarse quantization step (8-bit PNG, or 16-bit over a range far wider
 // than the values) come here, from the gate and from swell synth alike.
 [[noreturn]] void throw_rounding_hides_every_wave(double u, const OceanCase& c);
@@ -139,6 +155,9 @@ class WaveSeries {
   std::size_t frames_ = 0;
   std::unique_ptr<impls::HostBuffer> buffer_;
 };
+
+class Analysis;
+std::string diagnose_table_declarations(const Analysis& a);
 
 class Analysis {
  public:
@@ -357,6 +376,14 @@ class Analysis {
     return fits_;
   }
 
+  // The declaration of a tabulated spectrum (model = "table") that explains frame 0 where the
+  // case's own does not (table_declarations.cpp), as a clause for a failed check's reason:
+  // empty when no other reading of the file explains the frames. Made once, on first use.
+  const std::string& misdeclared_table() const {
+    std::call_once(table_once_, [this] { misdeclared_table_ = diagnose_table_declarations(*this); });
+    return misdeclared_table_;
+  }
+  int threads() const { return threads_; }
 
  private:
   const OceanCase& c_;
@@ -378,8 +405,15 @@ class Analysis {
   mutable WaveSeries series_;
   mutable std::vector<long double> spectral_energies_;
   mutable std::vector<WaveFit> fits_;
-  mutable std::once_flag series_once_, fits_once_;
+  mutable std::string misdeclared_table_;
+  mutable std::once_flag series_once_, fits_once_, table_once_;
 };
+
+// A failed check's explanation: the misdeclared table's reading where one explains the
+// frames, else the check's own `meaning`.
+inline std::string or_table(const Analysis& a, const std::string& meaning) {
+  return a.misdeclared_table().empty() ? meaning : a.misdeclared_table();
+}
 
 using Results = std::vector<CheckResult>;
 

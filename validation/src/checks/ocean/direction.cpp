@@ -116,7 +116,7 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
     } else if (std::abs(measured_resultant) < 0.25 * std::abs(expected_resultant)) {
       diagnosis = " — as much energy travels along −k as along +k: standing waves";
     } else {
-      diagnosis = " — the directional distribution differs from the case's spreading";
+      diagnosis = " — " + or_table(a, "the directional distribution differs from the case's spreading");
     }
   }
   Results out;

@@ -211,6 +211,8 @@ Results check_energy(const Analysis& a, OceanCheckReport& report) {
                             "(spectrum.unexpected_energy)",
                             100 * level / measured);
     }
+    // A misdeclared table moves the sea, not a factor on it: its reading is the cause.
+    if (!a.misdeclared_table().empty()) meaning = a.misdeclared_table();
     if (!meaning.empty()) reason += " — " + meaning;
   }
   return {statistical_check("energy", a.subject(), measured, law.mean(), p, alpha,

@@ -34,7 +34,7 @@ Results check_moments(const Analysis& a, OceanCheckReport& report) {
     out.push_back(statistical_check("moments.hs", a.subject(), hs, hs_expected, p, alpha,
                               fmt::format("p ≥ α = {:.1e}: Hs in [{:.4g}, {:.4g}] m", alpha, lo, hi),
                               fmt::format("Hs {:.4g} m against {:.4g} m (band-limited){}", hs,
-                                          hs_expected, p < alpha ? " — wrong wave height" : "")));
+                                          hs_expected, p < alpha ? " — " + or_table(a, "wrong wave height") : "")));
   }
   // Periods as ratios of moments, T = 2π (m0/m_n)^exponent. The law of the ratio R = m0/m_n is
   // exact up to the saddlepoint: P(R ≤ r) = P(Σ 2μ(1 − r ωⁿ) E ≤ 0), a sum of exponentials of
@@ -79,7 +79,7 @@ Results check_moments(const Analysis& a, OceanCheckReport& report) {
                               fmt::format("p ≥ α = {:.1e} (saddlepoint law of m0/m_n; delta-method z = {:.2f})", alpha, z),
                               fmt::format("{} {:.4g} s against {:.4g} s (z = {:.2f}){}", name, t,
                                           t_expected, z,
-                                          p < alpha ? " — the spectrum's frequency content differs" : "")));
+                                          p < alpha ? " — " + or_table(a, "the spectrum's frequency content differs") : "")));
   };
   period_check("tm01", 1, 1.0);
   period_check("tm02", 2, 0.5);

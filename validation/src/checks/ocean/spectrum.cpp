@@ -11,31 +11,16 @@ namespace swell::validation::ocean_analysis {
 Results check_spectrum(const Analysis& a, OceanCheckReport&) {
   const double alpha = a.options().alpha / 2;
   std::vector<const Wave*> order;
-  for (const Wave& w : a.waves()) order.push_back(&w);
+  std::vector<NormalizedOrdinate> ordinates;
+  for (const Wave& w : a.waves()) {
+    order.push_back(&w);
+    ordinates.push_back({w.k, a.periodogram0(w.index) / w.mu});
+  }
   std::sort(order.begin(), order.end(), [](const Wave* x, const Wave* y) { return x->k < y->k; });
   const int n = int(order.size());
-  const int rings = std::clamp(n / 64, 1, 24);
-  std::vector<double> p_values;
-  double worst_ratio = 1, worst_k = 0, worst_p = 1;
-  double low_ratio = 1e300, high_ratio = 0;
-  for (int r = 0; r < rings; ++r) {
-    const int begin = r * n / rings, end = (r + 1) * n / rings;
-    double sum = 0;
-    for (int i = begin; i < end; ++i) sum += a.periodogram0(order[i]->index) / order[i]->mu;
-    const double count = end - begin;
-    const double p = std::min(1.0, 2 * std::min(stats::gamma_lower_p(count, sum),
-                                                stats::gamma_upper_p(count, sum)));
-    p_values.push_back(p);
-    const double ratio = sum / count;
-    low_ratio = std::min(low_ratio, ratio);
-    high_ratio = std::max(high_ratio, ratio);
-    if (p <= worst_p) {
-      worst_p = p;
-      worst_ratio = ratio;
-      worst_k = 0.5 * (order[begin]->k + order[end - 1]->k);
-    }
-  }
-  const double p = stats::fisher_combined_p(p_values);
+  const RingShape shape = ring_shape(std::move(ordinates));
+  const int rings = shape.rings;
+  const double p = shape.p;
   // In the engine's terms: a band of |k| carrying twice its energy (two cascades overlapping).
   std::string shape_hint;
   if (p < alpha) {
@@ -59,12 +44,12 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
   }
   Results out;
   out.push_back(statistical_check(
-      "spectrum.shape", a.subject(), worst_ratio, 1.0, p, alpha,
+      "spectrum.shape", a.subject(), shape.worst_ratio, 1.0, p, alpha,
       fmt::format("p ≥ α = {:.0e} (Gamma law per ring, Fisher's method over {} rings)", alpha, rings),
       fmt::format("periodogram/model {:.3f}…{:.3f} over {} rings of |k| ({} wave vectors); "
                   "worst ring at k = {:.4g} rad/m: {:.3f} (p = {:.2g}){}",
-                  low_ratio, high_ratio, rings, n, worst_k, worst_ratio, worst_p,
-                  p < alpha ? " — the spectrum's shape differs from the case's" + shape_hint : "")));
+                  shape.low_ratio, shape.high_ratio, rings, n, shape.worst_k, shape.worst_ratio, shape.worst_p,
+                  p < alpha ? " — " + or_table(a, "the spectrum's shape differs from the case's" + shape_hint) : "")));
 
   // Energy where the case puts (almost) none.
   const Sampling& sampling = a.sampling();
