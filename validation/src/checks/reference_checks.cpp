@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <tuple>
 
+#include "checks/sea_file_checks.hpp"
 #include "swell/reference/directional.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/moments.hpp"
@@ -454,6 +455,7 @@ std::vector<CheckResult> run_reference_checks(const std::filesystem::path& data_
   swell_spectrum_checks(results);
   directional_checks(results);
   measured_spectrum_checks(data_dir, results);
+  sea_file_checks(data_dir, results);
   return results;
 }
 

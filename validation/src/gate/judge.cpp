@@ -70,15 +70,18 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
                                 : components[i].spectrum.model + ": ";
     for (const auto& note : components[i].table->notes) report.notes.push_back(who + note);
   }
-  if (tabulated && !case_file.ocean.is_lattice()) {
-    // Σ Ψ Δk² over the grid against ∫∫ Ψ dk: below 100 % where the table reaches beyond the
-    // grid's band of |k|; a band-averaged table's steps can put it a little above.
+  if (tabulated) {
+    // Σ Ψ Δk² over the samples' wave vectors (a grid's, or a lattice's N) against ∫∫ Ψ dk:
+    // below 100 % where the table reaches beyond their band of |k|; a band-averaged table's
+    // steps can put it a little above.
     const auto summary = reference::summarize_sampling(case_file.ocean, &travelling_power);
+    const char* samples = case_file.ocean.is_lattice() ? "lattice" : "grid";
     report.notes.push_back(fmt::format(
-        "the grid's wave vectors carry {:.2f} % of the sea's m0 (Σ Ψ Δk² = {:.4g} m², ∫∫ Ψ dk = "
-        "{:.4g} m²; the grid's band of |k| is {:.3g} to {:.3g} rad/m, and what lies beyond it is "
+        "the {}'s wave vectors carry {:.2f} % of the sea's m0 (Σ Ψ Δk² = {:.4g} m², ∫∫ Ψ dk = "
+        "{:.4g} m²; the {}'s band of |k| is {:.3g} to {:.3g} rad/m, and what lies beyond it is "
         "judged as absent)",
-        100 * summary.fraction, summary.m0_on_grid, summary.m0, summary.k_min, summary.k_max));
+        samples, 100 * summary.fraction, summary.m0_on_grid, summary.m0, samples, summary.k_min,
+        summary.k_max));
   }
 
   // Bad input (a grid that does not match, no height field) is thrown by the analysis.

@@ -106,6 +106,22 @@ std::vector<std::pair<double, double>> wpm_table() {
   return table;
 }
 
+// Every record of one file lists the same bands: the first record's frequencies become the
+// file's, a later record with others is refused naming both.
+template <typename File>
+void keep_one_set_of_bands(File& file, const std::vector<double>& frequency, const std::string& path,
+                           int line) {
+  if (file.records.empty()) {
+    file.frequency = frequency;
+  } else if (frequency != file.frequency) {
+    throw InvalidInput(fmt::format(
+        "{} line {}: {} frequencies from {} to {} Hz; the first record (line {}) has {} from "
+        "{} to {} Hz — one file must keep one set of bands",
+        path, line, frequency.size(), frequency.front(), frequency.back(), file.records.front().line,
+        file.frequency.size(), file.frequency.front(), file.frequency.back()));
+  }
+}
+
 }  // namespace
 
 std::string BuoyHour::iso() const {
@@ -152,16 +168,7 @@ BuoySpectrumFile read_ndbc_spectral_density(const std::string& path) {
       r.density.push_back(s);
       frequency.push_back(parse_frequency(t[i + 1], place, band));
     }
-    if (file.records.empty()) {
-      file.frequency = frequency;
-    } else if (frequency != file.frequency) {
-      throw InvalidInput(fmt::format(
-          "{} line {}: {} frequencies from {} to {} Hz; the first record (line {}) has {} from "
-          "{} to {} Hz — one file must keep one set of bands",
-          path, number, frequency.size(), frequency.front(), frequency.back(),
-          file.records.front().line, file.frequency.size(), file.frequency.front(),
-          file.frequency.back()));
-    }
+    keep_one_set_of_bands(file, frequency, path, number);
     file.records.push_back(std::move(r));
   }
   if (file.records.empty()) {
@@ -302,16 +309,7 @@ NdbcParameterFile read_ndbc_directional_parameter(const std::string& path,
       r.value.push_back(v);
       frequency.push_back(parse_frequency(t[i + 1], place, band));
     }
-    if (file.records.empty()) {
-      file.frequency = frequency;
-    } else if (frequency != file.frequency) {
-      throw InvalidInput(fmt::format(
-          "{} line {}: {} frequencies from {} to {} Hz; the first record (line {}) has {} from "
-          "{} to {} Hz — one file must keep one set of bands",
-          path, number, frequency.size(), frequency.front(), frequency.back(),
-          file.records.front().line, file.frequency.size(), file.frequency.front(),
-          file.frequency.back()));
-    }
+    keep_one_set_of_bands(file, frequency, path, number);
     file.records.push_back(std::move(r));
   }
   if (file.records.empty()) {

@@ -565,6 +565,42 @@ TEST(CascadeCli, SynthWritesASetAndTheGatePassesIt) {
   fs::remove_all(dir);
 }
 
+// Cascades take every form of sea a case declares: a composite wind sea plus swell, each with
+// its own spreading, and the two-peak netCDF table (docs/case_files.md). swell synth makes each
+// set and swell gate passes it (exit 0), the table's share of m0 noted per cascade.
+TEST(CascadeCli, CompositeAndTabulatedSeasPass) {
+  const std::string composite =
+      "[[spectrum]]\nmodel = \"jonswap\"\nhs = 2.5\ntp = 7.0\ngamma = 3.3\n"
+      "[spectrum.spreading]\nmodel = \"cos2s\"\ns = 10.0\nwind_dir_deg = 30.0\n"
+      "[[spectrum]]\nmodel = \"gaussian\"\nhs = 1.5\ntp = 14.0\nsigma = 0.05\n"
+      "[spectrum.spreading]\nmodel = \"cos2s\"\ns = 40.0\nwind_dir_deg = 75.0\n";
+  const std::string table =
+      "[spectrum]\nmodel = \"table\"\nfile = \"" +
+      (fs::path(SWELL_TEST_DATA_DIR) / "external/twopeak/twopeak_ochi_hubble.nc").string() +
+      "\"\nfrequency_unit = \"Hz\"\ndensity_unit = \"m2/Hz/deg\"\n"
+      "direction_convention = \"nautical_from\"\ndirection_unit = \"deg\"\n"
+      "select = {time = 0, site = 0}\n";
+  for (const auto& [name, sea] : {std::pair{"composite", composite}, std::pair{"table", table}}) {
+    SCOPED_TRACE(name);
+    const fs::path dir = scratch(name);
+    write_text(dir / "set.toml", "[time]\ndt = 0.5\nframes = 8\n" + sea +
+                                     "[synthesis]\nchoppiness = 1.0\nseed = 11\n"
+                                     "\n[cascades]\nrelation = \"additive\"\n" +
+                                     cascade_table(64, 1000, 0, 0.1, 0) + cascade_table(64, 250, 0.1, 0.8, 1));
+    const auto synth = swell::test::swell("synth --case " + (dir / "set.toml").string() +
+                                          " --impl fftw --out " + (dir / "out").string());
+    ASSERT_EQ(synth.exit_code, 0) << synth.output;
+    const auto gate = swell::test::swell("gate --case " + (dir / "out/case.toml").string());
+    EXPECT_EQ(gate.exit_code, 0) << gate.output;
+    EXPECT_NE(gate.output.find("verdict: PASS"), std::string::npos) << gate.output;
+    if (std::string(name) == "table") {
+      EXPECT_NE(gate.output.find("note: cascade1: the grid's wave vectors carry"), std::string::npos)
+          << gate.output;
+    }
+    fs::remove_all(dir);
+  }
+}
+
 // A set the engine got wrong fails (exit 1) naming the bug: the frames of a cascade 0 that
 // carries up to 0.13 rad/m, gated against the declared 0.1.
 TEST(CascadeCli, AWrongSetFailsWithExitOne) {

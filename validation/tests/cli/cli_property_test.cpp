@@ -82,7 +82,8 @@ DrawnCase draw_case(std::uint64_t seed) {
   };
 
   const std::string model =
-      d.pick<std::string>({"phillips", "pierson-moskowitz", "bretschneider", "jonswap", "tma"});
+      d.pick<std::string>({"phillips", "pierson-moskowitz", "bretschneider", "jonswap", "tma",
+                           "gaussian", "ochi-hubble", "torsethaugen"});
   add("--model", model);
   if (model == "phillips") {
     add("--amplitude", number(wide(1e-4, 10, 1e-30, 1e30)));
@@ -92,6 +93,19 @@ DrawnCase draw_case(std::uint64_t seed) {
     if (d.chance(0.3)) add("--against-wind-factor", number(d.uniform()));
   } else if (model == "pierson-moskowitz") {
     add("--u19-5", number(wide(2, 35, 1e-3, 1e4)));
+  } else if (model == "gaussian") {
+    add("--hs", number(wide(0.05, 15, 1e-12, 1e6)));
+    add("--tp", number(wide(1.5, 25, 1e-2, 1e4)));
+    add("--sigma", number(wide(0.01, 0.5, 1e-6, 1e3)));
+  } else if (model == "ochi-hubble") {
+    for (const char* part : {"1", "2"}) {
+      add(std::string("--hs") + part, number(wide(0.05, 10, 1e-12, 1e6)));
+      add(std::string("--tp") + part, number(wide(2, 25, 1e-2, 1e4)));
+      add(std::string("--lambda") + part, number(wide(0.5, 8, 1e-3, 1e3)));
+    }
+  } else if (model == "torsethaugen") {
+    add("--hs", number(wide(0.5, 15, 1e-12, 1e6)));
+    add("--tp", number(wide(3, 25, 1e-2, 1e4)));
   } else {
     const bool jonswap_like = model != "bretschneider";
     const double form = d.uniform();
@@ -112,15 +126,23 @@ DrawnCase draw_case(std::uint64_t seed) {
       if (d.chance(0.2)) add("--sigma-b", number(d.uniform(0.02, 0.2)));
     }
     if (model == "tma" && d.chance(0.3)) add("--depth-factor", "thompson-vincent");
-    const std::string spreading =
-        d.pick<std::string>({"cos2s", "mitsuyasu", "hasselmann", "donelan-banner", "cos-power"});
+  }
+  if (model != "phillips") {
+    const std::string spreading = d.pick<std::string>(
+        {"cos2s", "mitsuyasu", "hasselmann", "donelan-banner", "cos-power", "horvath"});
     add("--spreading", spreading);
     if (spreading == "cos2s") add("--s", number(wide(0.5, 80, 1e-3, 1e4)));
     if (spreading == "mitsuyasu") add("--s-max", number(wide(2, 80, 1e-2, 1e4)));
-    if (spreading == "hasselmann" && d.chance(0.5)) add("--wave-age", number(d.uniform(0.8, 5)));
+    if ((spreading == "hasselmann" || spreading == "horvath") && d.chance(0.5)) {
+      add("--wave-age", number(d.uniform(0.8, 5)));
+    }
     if (spreading == "cos-power") {
       add("--p", number(wide(1, 30, 1e-2, 1e3)));
       if (d.chance(0.2)) add("--one-sided", "yes");
+    }
+    if (spreading == "horvath") {
+      if (d.chance(0.5)) add("--swell", number(d.uniform(0, 1.5)));
+      if (d.chance(0.5)) add("--spread-blend", number(d.uniform()));
     }
   }
   if (model == "tma" || d.chance(0.5)) {

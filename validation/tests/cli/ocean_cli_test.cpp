@@ -656,6 +656,18 @@ TEST_F(OceanCli, SynthThenGatePassOnEveryFormOfSea) {
   }
 }
 
+// A tabulated sea on a rank-1 lattice: swell synth makes it, the gate passes it, and the report
+// notes the share of the table's m0 the lattice's wave vectors carry, as it does for a grid.
+TEST_F(OceanCli, ATabulatedSeaOnALatticeIsJudgedWithItsShareNoted) {
+  const std::string out = path("lattice");
+  const CliRun synth = swell("synth --case " + (kCases / "twopeak_table.toml").string() +
+                             " --impl lattice --points 16384 --frames 8 --out " + out);
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  const CliRun gate = swell("gate --case " + out + "/case.toml");
+  EXPECT_EQ(gate.exit_code, 0) << gate.output;
+  EXPECT_TRUE(contains(gate.output, "note: the lattice's wave vectors carry")) << gate.output;
+}
+
 // swell spectrum --case prints each component and the sum, whose m0 is theirs added.
 TEST_F(OceanCli, SpectrumOfACaseShowsEachComponentAndTheSum) {
   const CliRun run = swell("spectrum --case " + (kCases / "wind_sea_and_swell.toml").string() +

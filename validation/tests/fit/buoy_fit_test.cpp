@@ -11,6 +11,8 @@
 //    mean-one lognormal factor before the χ²), against the unscaled intervals';
 //  - `swell fit --spectrum` end to end and on bad input (exit 2, the problem named).
 #include <gtest/gtest.h>
+
+#include "scratch_support.hpp"
 #include <unistd.h>
 
 #include <algorithm>
@@ -41,39 +43,11 @@ const std::string kDir = std::string(SWELL_TEST_DATA_DIR) + "/external/ndbc41010
 const std::string kSpectrum = kDir + "41010.data_spec";
 const std::string kSummary = kDir + "41010.spec";
 
-// A scratch directory of this test's own, removed at the end.
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    dir = fs::temp_directory_path() /
-          ("swell_buoy_" + std::to_string(::getpid()) + "_" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir);
-  }
-  ~Scratch() {
-    std::error_code ignored;
-    fs::remove_all(dir, ignored);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    const fs::path p = dir / name;
-    std::ofstream(p) << text;
-    return p.string();
-  }
+// A scratch directory of the running test's own, removed at the end.
+struct Scratch : swell::test::Scratch {
+  Scratch() : swell::test::Scratch("swell_buoy_") {}
 };
-
-// Expects InvalidInput whose message holds every one of `parts`.
-template <typename F>
-void expect_invalid(F&& f, const std::vector<std::string>& parts) {
-  try {
-    f();
-    ADD_FAILURE() << "no InvalidInput";
-  } catch (const InvalidInput& e) {
-    for (const auto& part : parts) {
-      EXPECT_NE(std::string(e.what()).find(part), std::string::npos)
-          << "message lacks '" << part << "': " << e.what();
-    }
-  }
-}
+using swell::test::expect_invalid;
 
 // ---------------------------------------------------------------- readers
 

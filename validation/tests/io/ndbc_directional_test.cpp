@@ -11,6 +11,8 @@
 //    more directions than 72;
 //  - bad input, each named by file, line and field or by the hour and frequency.
 #include <gtest/gtest.h>
+
+#include "scratch_support.hpp"
 #include <unistd.h>
 
 #include <algorithm>
@@ -50,39 +52,11 @@ constexpr double kSameFormula = 1e-12;
 // The table's sums over 46 bands × 72 directions of values up to ~10 in double precision.
 constexpr double kSums = 1e-12;
 
-// A scratch directory of this test's own, removed at the end.
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    dir = fs::temp_directory_path() /
-          ("swell_ndbc_" + std::to_string(::getpid()) + "_" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir);
-  }
-  ~Scratch() {
-    std::error_code ignored;
-    fs::remove_all(dir, ignored);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    const fs::path p = dir / name;
-    std::ofstream(p) << text;
-    return p.string();
-  }
+// A scratch directory of the running test's own, removed at the end.
+struct Scratch : swell::test::Scratch {
+  Scratch() : swell::test::Scratch("swell_ndbc_") {}
 };
-
-// Expects InvalidInput whose message holds every one of `parts`.
-template <typename F>
-void expect_invalid(F&& f, const std::vector<std::string>& parts) {
-  try {
-    f();
-    ADD_FAILURE() << "no InvalidInput";
-  } catch (const InvalidInput& e) {
-    for (const auto& part : parts) {
-      EXPECT_NE(std::string(e.what()).find(part), std::string::npos)
-          << "message lacks '" << part << "': " << e.what();
-    }
-  }
-}
+using swell::test::expect_invalid;
 
 // The week's five files, read once.
 struct Week {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "quadrature_support.hpp"
 #include "test_support.hpp"
 #include "swell/reference/dispersion.hpp"
 #include "swell/reference/errors.hpp"
@@ -29,17 +30,7 @@ using std::numbers::pi;
 
 constexpr double kWp = 0.8;
 
-// ∫ f dθ over (−π, π], split at −π/2, 0, π/2, each piece by tanh-sinh to 1e-14.
-double circle_integral(const std::function<double(double)>& f) {
-  static boost::math::quadrature::tanh_sinh<double> ts;
-  double sum = 0;
-  const double cuts[] = {-pi, -pi / 2, 0.0, pi / 2, pi};
-  for (int i = 0; i < 4; ++i) {
-    double error = 0, l1 = 0;
-    sum += ts.integrate(f, cuts[i], cuts[i + 1], 1e-14, &error, &l1);
-  }
-  return sum;
-}
+using swell::test::circle_integral;
 
 sr::SpreadingPtr horvath(double wave_age, double swell, double blend) {
   sr::Horvath::Parameters p;

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "quadrature_support.hpp"
 #include "test_support.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/frequency_spectrum.hpp"
@@ -97,22 +98,6 @@ double test_group_velocity(double k, double h, double g = kG) {
   return (g * std::tanh(kh) + g * k * h * sech * sech) / (2 * std::sqrt(g * k * std::tanh(kh)));
 }
 
-// Golden-section search for the maximum of f on [a, b] (unimodal there).
-template <class F>
-double golden_max(F f, double a, double b) {
-  const double r = (std::sqrt(5.0) - 1) / 2;
-  double c = b - r * (b - a), d = a + r * (b - a);
-  double fc = f(c), fd = f(d);
-  for (int i = 0; i < 200 && (b - a) > 1e-15 * b; ++i) {
-    if (fc > fd) {
-      b = d, d = c, fd = fc, c = b - r * (b - a), fc = f(c);
-    } else {
-      a = c, c = d, fc = fd, d = a + r * (b - a), fd = f(d);
-    }
-  }
-  return 0.5 * (a + b);
-}
-
 std::vector<double> omegas_around(double wp) {
   std::vector<double> v;
   for (double x = 0.3; x <= 6.0; x += 0.037) v.push_back(x * wp);
@@ -136,7 +121,7 @@ TEST(PiersonMoskowitz, WindFormPeakIsFourBetaOverFiveToTheQuarterGOverU) {
     EXPECT_NEAR(pm->peak_omega() * u / kG, 0.877, 0.0005);
     // And it is the maximum of S: a golden-section search finds the same ω to ~√ε (1e-7
     // leaves room for the flatness of a maximum).
-    EXPECT_LT(rel(golden_max([&](double w) { return (*pm)(w); }, 0.3 * wp, 3 * wp), wp), 1e-7);
+    EXPECT_LT(rel(swell::test::golden_section_maximum([&](double w) { return (*pm)(w); }, 0.3 * wp, 3 * wp), wp), 1e-7);
   }
 }
 
@@ -469,7 +454,7 @@ TEST(Tma, PeakIsTheMaximumOfS) {
   const auto j = sr::Jonswap::from_hs_tp(2.0, 12.0, {1.5, 0.07, 0.09});
   // h = 3 m: Φ rises steeply through the peak, so the TMA peak moves off the JONSWAP one.
   const auto tma = sr::Tma::create(j, 3.0);
-  const double found = golden_max([&](double w) { return (*tma)(w); }, 0.5 * j->peak_omega(),
+  const double found = swell::test::golden_section_maximum([&](double w) { return (*tma)(w); }, 0.5 * j->peak_omega(),
                                   2.0 * j->peak_omega());
   // Both sides locate a flat maximum to ~√ε; 1e-6 relative.
   EXPECT_LT(rel(tma->peak_omega(), found), 1e-6);

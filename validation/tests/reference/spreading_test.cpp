@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "quadrature_support.hpp"
 #include "test_support.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/spreading.hpp"
@@ -24,18 +25,7 @@ using swell::test::rel;
 namespace sr = swell::reference;
 using std::numbers::pi;
 
-// ∫ f dθ over (−π, π], split at −π/2, 0, π/2 (the peak of every model and the kinks of the
-// one-sided and non-integer |cos θ|^p laws), each piece by tanh-sinh requested to 1e-14.
-double circle_integral(const std::function<double(double)>& f) {
-  static boost::math::quadrature::tanh_sinh<double> ts;
-  double sum = 0;
-  const double cuts[] = {-pi, -pi / 2, 0.0, pi / 2, pi};
-  for (int i = 0; i < 4; ++i) {
-    double error = 0, l1 = 0;
-    sum += ts.integrate(f, cuts[i], cuts[i + 1], 1e-14, &error, &l1);
-  }
-  return sum;
-}
+using swell::test::circle_integral;
 
 // Circular spread σθ = √(2(1 − |∫ cos θ D dθ|)) (Kuik et al. 1988), by the test's quadrature.
 double circular_spread(const sr::Spreading& d, double omega) {

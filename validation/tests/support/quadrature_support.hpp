@@ -37,6 +37,20 @@ inline double integrate_pieces(const std::function<double(double)>& f, std::vect
   return sum + integrate(f, cuts.back(), INFINITY, tolerance);
 }
 
+// ∫ f dθ over (−π, π], split at −π/2, 0, π/2 (the peak of every spreading model and the kinks
+// of the one-sided and non-integer |cos θ|^p laws), each piece by tanh-sinh to 1e-14.
+inline double circle_integral(const std::function<double(double)>& f) {
+  static boost::math::quadrature::tanh_sinh<double> ts;
+  constexpr double pi = 3.141592653589793238462643383279502884;
+  double sum = 0;
+  const double cuts[] = {-pi, -pi / 2, 0.0, pi / 2, pi};
+  for (int i = 0; i < 4; ++i) {
+    double error = 0, l1 = 0;
+    sum += ts.integrate(f, cuts[i], cuts[i + 1], 1e-14, &error, &l1);
+  }
+  return sum;
+}
+
 // Golden-section search for the maximum of f on [a, b] (unimodal there), to ~√ε relative.
 template <class F>
 double golden_section_maximum(F f, double a, double b) {
