@@ -24,6 +24,7 @@
 #include <set>
 
 #include "commands.hpp"
+#include "synth_options.hpp"
 #include "swell/impls/synthesizer.hpp"
 #include "swell/validation/io/npy.hpp"
 #include "swell/validation/io/mesh_io.hpp"
@@ -71,36 +72,6 @@ std::string parameter_list(const std::string& model) {
   return out.empty() ? "none" : out;
 }
 
-struct SynthOptions {
-  std::string case_file;
-  std::string model;
-  std::string spreading;
-  // Model parameters by name; the CLI::Option tells whether each was given.
-  std::map<std::string, double> numbers;
-  std::map<std::string, std::string> choices;
-  std::map<std::string, CLI::Option*> number_options, choice_options;
-
-  std::string impl;
-  std::int64_t points = 0;         // --impl lattice: lattice points
-  std::string kind = "korobov";    // --impl lattice: korobov (spectral test) or fibonacci
-  int n = 0, ny = 0;
-  double length = 0, length_y = 0;
-  std::string seed;
-  int frames = 1;
-  double dt = 0, t0 = 0, gravity = 0, wind_dir = 0, choppiness = 0, loop_period = 0;
-  std::string depth;
-  std::map<std::string, CLI::Option*> given;  // flag name → option, for the case fields
-
-  std::string precision = "fp32";
-  std::string format = "exr";
-  std::vector<double> value_range;  // png: the metres pixel 0 and pixel 65535 stand for
-  std::string out;
-  std::string json;
-  std::string sum = "auto";  // cascade sets: write the summed surface (yes | no | auto)
-
-  bool has(const std::string& flag) const { return given.at(flag)->count() > 0; }
-};
-
 // --impl lattice[:fft=NAME]: rank-1 lattice synthesis (docs/conventions.md §2.1) through the
 // 1-D transforms of backend NAME (default fftw; NAME may carry its own options, as
 // "fftw:threads=2"). Anything else is a grid backend.
@@ -123,31 +94,6 @@ ImplChoice parse_impl(const std::string& impl) {
                                    impl, fmt::join(impls::backend_names(), ", ")));
   }
   return {true, option.substr(4)};
-}
-
-// CLI11 reads "-1" into a uint64 as 2⁶⁴ − 1; a seed is parsed here, digits only.
-std::uint64_t parse_seed(const std::string& text) {
-  std::uint64_t value = 0;
-  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || result.ec != std::errc() || result.ptr != text.data() + text.size()) {
-    throw InvalidInput("--seed: '" + text + "' is not an integer in 0…18446744073709551615");
-  }
-  return value;
-}
-
-double parse_depth(const std::string& text) {
-  if (text == "inf") return reference::kInfiniteDepth;
-  std::size_t used = 0;
-  double value = 0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size()) {
-    throw InvalidInput("--depth: '" + text + "' is not a depth in metres or inf");
-  }
-  return value;
 }
 
 // The case the flags (and the case file, if any) describe.
@@ -201,66 +147,7 @@ validation::CaseFile build_case(const SynthOptions& o) {
     }
   }
 
-  // A composite or tabulated sea is the case file's to say: the model flags set the one
-  // component of a parametric sea.
-  if (ocean.is_composite() || ocean.table) {
-    std::vector<std::string> given;
-    for (const char* flag : {"--model", "--spreading", "--wind-dir"}) {
-      if (o.has(flag)) given.push_back(flag);
-    }
-    for (const auto& [name, option] : o.number_options) {
-      if (option->count()) given.push_back(flag_of(name));
-    }
-    for (const auto& [name, option] : o.choice_options) {
-      if (option->count()) given.push_back(flag_of(name));
-    }
-    if (!given.empty()) {
-      throw InvalidInput(fmt::format(
-          "{} with --case {}: the case's sea is {}; its models and parameters are the case file's "
-          "to change ([[spectrum]] tables)", given.front(), o.case_file,
-          ocean.is_composite() ? fmt::format("composite ({} components)", ocean.more_components.size() + 1)
-                               : "a table (model = \"" + ocean.spectrum.model + "\")"));
-    }
-  }
-  // Models: --model replaces the spectrum; phillips carries its own directionality.
-  if (o.has("--model")) {
-    ocean.spectrum = ModelSpec{o.model, {}, {}};
-    if (o.model == "phillips" && !o.has("--spreading")) ocean.spreading = ModelSpec{};
-  }
-  if (o.has("--spreading")) ocean.spreading = ModelSpec{o.spreading, {}, {}};
-  // A 2-D table carries its own directions, as phillips does.
-  const bool default_spreading = ocean.spectrum.model != "phillips" && ocean.spreading.model.empty() &&
-                                 !(ocean.table && ocean.table->is_directional());
-  if (default_spreading) ocean.spreading.model = kDefaultSpreading;
-
-  // Parameters go to whichever model takes them.
-  auto route = [&](const std::string& name) -> ModelSpec& {
-    if (takes(ocean.spectrum.model, name)) return ocean.spectrum;
-    if (takes(ocean.spreading.model, name)) return ocean.spreading;
-    if (ocean.spectrum.model == "phillips" && (name == "hs" || name == "tp")) {
-      throw InvalidInput(fmt::format(
-          "{} is not a parameter of spectrum 'phillips': Phillips is scaled by its amplitude A "
-          "(--amplitude) and shaped by its wind speed (--wind-speed), not by a sea state; for a "
-          "given Hs and Tp use --model jonswap or bretschneider",
-          flag_of(name)));
-    }
-    throw InvalidInput(fmt::format(
-        "{} is not a parameter of spectrum '{}' (takes {}){}", flag_of(name), ocean.spectrum.model,
-        parameter_list(ocean.spectrum.model),
-        ocean.spreading.model.empty()
-            ? std::string(" and there is no spreading model")
-            : fmt::format(" nor of spreading '{}' (takes {})", ocean.spreading.model,
-                          parameter_list(ocean.spreading.model))));
-  };
-  for (const auto& [name, option] : o.number_options) {
-    if (option->count()) route(name).numbers[name] = o.numbers.at(name);
-  }
-  for (const auto& [name, option] : o.choice_options) {
-    if (option->count()) route(name).choices[name] = o.choices.at(name);
-  }
-  if (default_spreading && !ocean.spreading.numbers.count("s")) {
-    ocean.spreading.numbers["s"] = kDefaultSpreadingS;
-  }
+  apply_sea_flags(o, ocean);
 
   // Grid, time, physics, synthesis.
   if (o.has("--n")) ocean.grid.nx = ocean.grid.ny = o.n;
@@ -271,12 +158,8 @@ validation::CaseFile build_case(const SynthOptions& o) {
   if (o.has("--frames")) ocean.frames = o.frames;
   if (o.has("--dt")) ocean.dt = o.dt;
   if (o.has("--t0")) ocean.t0 = o.t0;
-  if (o.has("--depth")) ocean.depth = parse_depth(o.depth);
-  if (o.has("--gravity")) ocean.gravity = o.gravity;
-  if (o.has("--wind-dir")) ocean.wind_dir_deg = o.wind_dir;
   if (o.has("--choppiness")) ocean.choppiness = o.choppiness;
   if (o.has("--loop-period")) ocean.loop_period = o.loop_period;
-  if (o.has("--seed")) ocean.seed = parse_seed(o.seed);
   if (lattice) {
     // The lattice over the case's patch: --points (and --kind) make a new one; a lattice case
     // keeps its points and generator, over the patch --length may have changed.
@@ -420,6 +303,12 @@ validation::InputSpec input_in(const std::string& folder, const SurfaceWriting& 
 }
 
 int run_synth(const SynthOptions& o) {
+  if (wants_probes(o)) return run_probe_synth(o);
+  if (!o.has("--impl")) {
+    throw InvalidInput("--impl is required: the transform backend (" +
+                       fmt::format("{}", fmt::join(impls::backend_names(), ", ")) +
+                       "), or lattice[:fft=NAME]; a probes case needs none");
+  }
   validation::CaseFile c = build_case(o);
   const auto& ocean = c.ocean;
   SurfaceWriting w;
@@ -597,6 +486,101 @@ int run_synth(const SynthOptions& o) {
 
 }  // namespace
 
+// CLI11 reads "-1" into a uint64 as 2⁶⁴ − 1; a seed is parsed here, digits only.
+std::uint64_t parse_seed(const std::string& text) {
+  std::uint64_t value = 0;
+  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || result.ec != std::errc() || result.ptr != text.data() + text.size()) {
+    throw InvalidInput("--seed: '" + text + "' is not an integer in 0…18446744073709551615");
+  }
+  return value;
+}
+
+double parse_depth(const std::string& text) {
+  if (text == "inf") return reference::kInfiniteDepth;
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size()) {
+    throw InvalidInput("--depth: '" + text + "' is not a depth in metres or inf");
+  }
+  return value;
+}
+
+void apply_sea_flags(const SynthOptions& o, reference::OceanCase& ocean, bool default_spreading_allowed) {
+  // A composite or tabulated sea is the case file's to say: the model flags set the one
+  // component of a parametric sea.
+  if (ocean.is_composite() || ocean.table) {
+    std::vector<std::string> given;
+    for (const char* flag : {"--model", "--spreading", "--wind-dir"}) {
+      if (o.has(flag)) given.push_back(flag);
+    }
+    for (const auto& [name, option] : o.number_options) {
+      if (option->count()) given.push_back(flag_of(name));
+    }
+    for (const auto& [name, option] : o.choice_options) {
+      if (option->count()) given.push_back(flag_of(name));
+    }
+    if (!given.empty()) {
+      throw InvalidInput(fmt::format(
+          "{} with --case {}: the case's sea is {}; its models and parameters are the case file's "
+          "to change ([[spectrum]] tables)", given.front(), o.case_file,
+          ocean.is_composite() ? fmt::format("composite ({} components)", ocean.more_components.size() + 1)
+                               : "a table (model = \"" + ocean.spectrum.model + "\")"));
+    }
+  }
+  // Models: --model replaces the spectrum; phillips carries its own directionality.
+  if (o.has("--model")) {
+    ocean.spectrum = ModelSpec{o.model, {}, {}};
+    if (o.model == "phillips" && !o.has("--spreading")) ocean.spreading = ModelSpec{};
+  }
+  if (o.has("--spreading")) ocean.spreading = ModelSpec{o.spreading, {}, {}};
+  // A 2-D table carries its own directions, as phillips does.
+  const bool default_spreading = default_spreading_allowed && ocean.spectrum.model != "phillips" &&
+                                 ocean.spreading.model.empty() &&
+                                 !(ocean.table && ocean.table->is_directional());
+  if (default_spreading) ocean.spreading.model = kDefaultSpreading;
+
+  // Parameters go to whichever model takes them.
+  auto route = [&](const std::string& name) -> ModelSpec& {
+    if (takes(ocean.spectrum.model, name)) return ocean.spectrum;
+    if (takes(ocean.spreading.model, name)) return ocean.spreading;
+    if (ocean.spectrum.model == "phillips" && (name == "hs" || name == "tp")) {
+      throw InvalidInput(fmt::format(
+          "{} is not a parameter of spectrum 'phillips': Phillips is scaled by its amplitude A "
+          "(--amplitude) and shaped by its wind speed (--wind-speed), not by a sea state; for a "
+          "given Hs and Tp use --model jonswap or bretschneider",
+          flag_of(name)));
+    }
+    throw InvalidInput(fmt::format(
+        "{} is not a parameter of spectrum '{}' (takes {}){}", flag_of(name), ocean.spectrum.model,
+        parameter_list(ocean.spectrum.model),
+        ocean.spreading.model.empty()
+            ? std::string(" and there is no spreading model")
+            : fmt::format(" nor of spreading '{}' (takes {})", ocean.spreading.model,
+                          parameter_list(ocean.spreading.model))));
+  };
+  for (const auto& [name, option] : o.number_options) {
+    if (option->count()) route(name).numbers[name] = o.numbers.at(name);
+  }
+  for (const auto& [name, option] : o.choice_options) {
+    if (option->count()) route(name).choices[name] = o.choices.at(name);
+  }
+  if (default_spreading && !ocean.spreading.numbers.count("s")) {
+    ocean.spreading.numbers["s"] = kDefaultSpreadingS;
+  }
+
+  if (o.has("--depth")) ocean.depth = parse_depth(o.depth);
+  if (o.has("--gravity")) ocean.gravity = o.gravity;
+  if (o.has("--wind-dir")) ocean.wind_dir_deg = o.wind_dir;
+  if (o.has("--seed")) ocean.seed = parse_seed(o.seed);
+}
+
+
 Action add_synth_command(CLI::App& app) {
   auto o = std::make_shared<SynthOptions>();
   const auto models = reference::frequency_model_names();
@@ -628,10 +612,10 @@ Action add_synth_command(CLI::App& app) {
   }
   std::string names;
   for (const auto& name : impls::backend_names()) names += (names.empty() ? "" : ", ") + name;
-  app.add_option("--impl", o->impl,
-                 "transform backend (" + names + "), or lattice[:fft=NAME] for rank-1 lattice "
-                 "synthesis through NAME's 1-D transforms (default fftw)")
-      ->required();
+  o->given["--impl"] = app.add_option("--impl", o->impl,
+                                      "transform backend (" + names + "), or lattice[:fft=NAME] for "
+                                      "rank-1 lattice synthesis through NAME's 1-D transforms "
+                                      "(required, but for probes)");
   o->given["--points"] = app.add_option("--points", o->points,
                                         "--impl lattice: the number of lattice points N");
   o->given["--kind"] = app.add_option("--kind", o->kind,
@@ -667,6 +651,34 @@ Action add_synth_command(CLI::App& app) {
                  "cascade sets: write the summed surface under DIR/sum (auto: when the patch "
                  "lengths allow and its grid is at most 2048²; yes; no)")
       ->check(CLI::IsMember({"auto", "yes", "no"}));
+  o->given["--sampling"] = app.add_option("--sampling", o->sampling,
+                                          "probes: time series at points (docs/probes.md), with "
+                                          "--positions, --dt, --samples and the scheme below")
+                               ->check(CLI::IsMember({"grid", "probes"}));
+  o->given["--positions"] = app.add_option("--positions", o->positions,
+                                           "probes: x0,y0,x1,y1,… [m]")->delimiter(',');
+  o->given["--samples"] = app.add_option("--samples", o->samples, "probes: samples per probe");
+  o->given["--amplitudes"] = app.add_option("--amplitudes", o->amplitudes,
+                                            "probes: rayleigh (default) or deterministic")
+                                 ->check(CLI::IsMember({"rayleigh", "deterministic"}));
+  o->given["--frequencies"] = app.add_option("--frequencies", o->frequencies,
+                                             "probes: uniform (default; Δω = 2π/repeat period), "
+                                             "equal_energy or random (--n-frequencies lines)")
+                                  ->check(CLI::IsMember({"uniform", "equal_energy", "random"}));
+  o->given["--repeat-period"] = app.add_option("--repeat-period", o->repeat_period,
+                                               "probes: the repeat period of uniform lines [s]");
+  o->given["--omega-cutoff"] = app.add_option("--omega-cutoff", o->omega_cutoff,
+                                              "probes: LOW,HIGH, the band synthesized [rad/s]")
+                                   ->delimiter(',');
+  o->given["--directions"] = app.add_option("--directions", o->directions,
+                                            "probes: long_crested (default), single_per_frequency "
+                                            "or double_summation (--n-directions per frequency)")
+                                 ->check(CLI::IsMember({"long_crested", "single_per_frequency",
+                                                        "double_summation"}));
+  o->given["--n-directions"] = app.add_option("--n-directions", o->n_directions,
+                                              "probes: lines per frequency (double_summation)");
+  o->given["--n-frequencies"] = app.add_option("--n-frequencies", o->n_frequencies,
+                                               "probes: lines over the band (equal_energy, random)");
   app.add_option("--out", o->out, "output directory (created if missing)")->required();
   app.add_option("--json", o->json, "write JSON to FILE, or - for standard output");
   app.footer(
@@ -682,7 +694,9 @@ Action add_synth_command(CLI::App& app) {
       "cascade's frames under DIR/cascade0, DIR/cascade1, … and, where the patch lengths are integer "
       "ratios (--sum), the summed surface on the finest spacing over the largest patch under DIR/sum. "
       "JSON: {case, description, impl, precision, format, n, sampling, frames, files, seconds} "
-      "(+ relation, cascades, sum for a set).");
+      "(+ relation, cascades, sum for a set). Probes (--sampling probes, or a probes case file; "
+      "no --impl): DIR/elevation.csv (time, then one column per probe, m) and DIR/case.toml, the "
+      "sum of wave lines of the declared scheme (docs/probes.md).");
   return [o] { return run_synth(*o); };
 }
 

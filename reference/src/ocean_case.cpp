@@ -195,6 +195,28 @@ void OceanCase::set_lattice(std::shared_ptr<const RankOneLattice> new_lattice) {
   grid = Grid{0, 0, checked.lx(), checked.ly()};
 }
 
+namespace {
+
+// The sea's scalar rules, shared by validate() and validate_sea().
+void require_sea_scalars(const OceanCase& c) {
+  require(std::isfinite(c.t0), "t0", "finite (s)", c.t0);
+  require(std::isfinite(c.dt) && c.dt >= 0, "dt", "finite and ≥ 0 (s)", c.dt);
+  require(std::isfinite(c.gravity) && c.gravity > 0, "gravity", "finite and > 0 (m/s²)", c.gravity);
+  require(c.depth > 0 && !std::isnan(c.depth), "depth", "> 0 m or inf", c.depth);
+  for (const auto& part : c.components()) {
+    require(std::isfinite(part.wind_dir_deg), "wind_dir_deg", "finite (degrees)", part.wind_dir_deg);
+    require(std::isfinite(part.energy_factor) && part.energy_factor > 0, "energy_factor",
+            "finite and > 0", part.energy_factor);
+    require(std::isfinite(part.short_wave_fade) && part.short_wave_fade >= 0, "short_wave_fade",
+            "finite and ≥ 0 (m)", part.short_wave_fade);
+  }
+  require(std::isfinite(c.choppiness), "choppiness", "finite", c.choppiness);
+  require(std::isfinite(c.loop_period) && c.loop_period >= 0, "loop_period", "finite and ≥ 0 (s)",
+          c.loop_period);
+}
+
+}  // namespace
+
 void OceanCase::validate() const {
   if (lattice) {
     const Sampling checked(lattice);  // 2-D only
@@ -207,21 +229,8 @@ void OceanCase::validate() const {
     (void)Grid::create(grid.nx, grid.ny, grid.lx, grid.ly);
   }
   require(frames >= 1, "frames", "≥ 1", frames);
-  require(std::isfinite(t0), "t0", "finite (s)", t0);
-  require(std::isfinite(dt) && dt >= 0, "dt", "finite and ≥ 0 (s)", dt);
+  require_sea_scalars(*this);
   require(frames == 1 || dt > 0, "dt", "> 0 when there is more than one frame (s)", dt);
-  require(std::isfinite(gravity) && gravity > 0, "gravity", "finite and > 0 (m/s²)", gravity);
-  require(depth > 0 && !std::isnan(depth), "depth", "> 0 m or inf", depth);
-  for (const auto& c : components()) {
-    require(std::isfinite(c.wind_dir_deg), "wind_dir_deg", "finite (degrees)", c.wind_dir_deg);
-    require(std::isfinite(c.energy_factor) && c.energy_factor > 0, "energy_factor",
-            "finite and > 0", c.energy_factor);
-    require(std::isfinite(c.short_wave_fade) && c.short_wave_fade >= 0, "short_wave_fade",
-            "finite and ≥ 0 (m)", c.short_wave_fade);
-  }
-  require(std::isfinite(choppiness), "choppiness", "finite", choppiness);
-  require(std::isfinite(loop_period) && loop_period >= 0, "loop_period", "finite and ≥ 0 (s)",
-          loop_period);
   require(cascade >= 0, "cascade", "≥ 0 (the index that keys its random numbers)", cascade);
   band.validate(fmt::format("cascade {}", cascade));
   if (!members.empty()) {
@@ -246,7 +255,12 @@ void OceanCase::validate() const {
   (void)directional_spectrum();  // the spectrum and spreading parameters
 }
 
-std::string OceanCase::describe() const {
+void OceanCase::validate_sea() const {
+  require_sea_scalars(*this);
+  (void)sea_spectrum();  // the spectrum and spreading parameters
+}
+
+std::string OceanCase::describe_sea() const {
   auto params = [](const ModelSpec& spec) {
     std::string out = spec.model;
     for (const auto& [name, value] : spec.numbers) out += fmt::format(" {}={:g}", name, value);
@@ -262,6 +276,11 @@ std::string OceanCase::describe() const {
     if (!c.spreading.model.empty()) out += " + " + params(c.spreading);
     if (is_composite()) out += fmt::format(" toward {:g}°", c.wind_dir_deg);
   }
+  return out;
+}
+
+std::string OceanCase::describe() const {
+  std::string out = describe_sea();
   if (lattice) {
     out += ", " + lattice->describe();
   } else {

@@ -56,5 +56,8 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
 // (cascade_gate.cpp).
 GateReport read_and_judge_cascades(const CaseFile& case_file, const GateOptions& options,
                                    Clock::time_point start);
+// A probes case (probe_gate.cpp): its series read, then judged by checks/probe_checks.hpp.
+GateReport read_and_judge_probes(const CaseFile& case_file, const GateOptions& options,
+                                 Clock::time_point start);
 
 }  // namespace swell::validation::gate_path

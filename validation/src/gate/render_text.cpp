@@ -18,12 +18,16 @@ std::string render_gate(const GateReport& report) {
   std::string out = fmt::format("swell gate: {}\n", report.subject);
   std::string fields;
   for (const auto& f : report.fields) fields += (fields.empty() ? "" : ", ") + f;
-  out += fmt::format("{}{} frame{} of {}; fields: {}; unit roundoff {:.2g}\n",
-                     report.case_path.empty() ? "" : "case " + report.case_path + "; ",
-                     report.frames, report.frames == 1 ? "" : "s",
-                     report.samples.empty() ? fmt::format("{}×{}", report.nx, report.ny)
-                                            : report.samples,
-                     fields.empty() ? "none" : fields, report.unit_roundoff);
+  const std::string case_name = report.case_path.empty() ? "" : "case " + report.case_path + "; ";
+  if (report.frames == 0) {  // a probes case: series, not frames
+    out += fmt::format("{}{}; fields: {}; unit roundoff {:.2g}\n", case_name, report.samples,
+                       fields.empty() ? "none" : fields, report.unit_roundoff);
+  } else {
+    out += fmt::format("{}{} frame{} of {}; fields: {}; unit roundoff {:.2g}\n", case_name, report.frames,
+                       report.frames == 1 ? "" : "s",
+                       report.samples.empty() ? fmt::format("{}×{}", report.nx, report.ny) : report.samples,
+                       fields.empty() ? "none" : fields, report.unit_roundoff);
+  }
   out += fmt::format("family-wise α = {:.3g}, shared by {} statistical checks: each at α = {:.3g}\n",
                      report.alpha, report.statistical_checks, report.alpha_per_check);
   for (const auto& note : report.notes) out += "note: " + note + "\n";

@@ -20,6 +20,7 @@ GateReport read_and_judge(const CaseFile& case_file, const GateOptions& options,
                           Clock::time_point start) {
   options.validate();
   if (case_file.is_cascade_set()) return read_and_judge_cascades(case_file, options, start);
+  if (case_file.is_probe_case()) return read_and_judge_probes(case_file, options, start);
   const int threads = options.resolved_threads();
   const auto& ocean = case_file.ocean;
   require_gate_memory(ocean, threads);
@@ -56,6 +57,9 @@ GateReport run_gate(const CaseFile& case_file, const GateOptions& options) {
 GateReport run_gate(const CaseFile& case_file, const reference::FrameSequence& frames,
                     const GateOptions& options) {
   options.validate();
+  if (case_file.is_probe_case()) {
+    throw InvalidInput(case_file.origin.string() + ": a probes case is judged on its series, not frames");
+  }
   return judge(case_file, frames, frames,
                expected_travelling_power(case_file.ocean, options.resolved_threads()), options,
                Clock::now());

@@ -571,6 +571,156 @@ Section section_of(const Reporter& report, const toml::table& document, const st
   return Section(report, name, document.get_as<toml::table>(name));
 }
 
+// [sampling] kind = "probes": positions = [[x, y], …] in m; no [grid] and no cascades.
+void read_probe_positions(const Reporter& report, const toml::table& document, const Section& sampling,
+                          CaseFile& out) {
+  if (sampling.has("points") || sampling.has("generator")) {
+    sampling.fail(sampling.has("points") ? "points" : "generator", "belongs to kind = \"lattice\"");
+  }
+  if (document.contains("grid")) {
+    report.fail("[grid]: a probes case samples points ([sampling] positions), not a grid; remove [grid]");
+  }
+  if (document.contains("cascades") || document.contains("cascade")) {
+    report.fail("[cascades]: cascades are grids; a probes case samples points");
+  }
+  ProbeSetup setup;
+  const toml::node* node = sampling.find("positions");
+  if (!node) sampling.missing("positions", "[[x, y], …] in m, one pair per probe");
+  const auto* list = node->as_array();
+  const std::string expected = "an array of [x, y] pairs of numbers in m, one per probe";
+  if (!list || list->empty()) sampling.wrong_type("positions", expected);
+  for (std::size_t p = 0; p < list->size(); ++p) {
+    const auto* pair = list->get(p)->as_array();
+    if (!pair || pair->size() != 2) {
+      sampling.fail("positions", fmt::format("probe {} is not an [x, y] pair of numbers ({})", p, expected));
+    }
+    std::array<double, 2> xy{};
+    for (std::size_t i = 0; i < 2; ++i) {
+      const toml::node& item = *pair->get(i);
+      if (auto v = item.as_floating_point()) {
+        xy[i] = v->get();
+      } else if (auto w = item.as_integer()) {
+        xy[i] = double(w->get());
+      } else {
+        sampling.fail("positions", fmt::format("probe {}'s {} is not a number", p, i == 0 ? "x" : "y"));
+      }
+      if (!std::isfinite(xy[i])) {
+        sampling.fail("positions", fmt::format("probe {}'s {} is not finite", p, i == 0 ? "x" : "y"));
+      }
+    }
+    setup.layout.positions.push_back(xy);
+  }
+  out.probes = std::move(setup);
+}
+
+// [time] of a probes case: t0, dt (> 0) and samples (per probe, ≥ 2).
+void read_probe_time(const Section& time, CaseFile& out) {
+  time.allow_only({"t0", "dt", "samples"}, " (a probes case counts samples, not frames)");
+  auto& layout = out.probes->layout;
+  layout.t0 = time.number_or("t0", 0);
+  const auto dt = time.number("dt");
+  if (!dt) time.missing("dt", "the sampling interval in s");
+  if (!(std::isfinite(*dt) && *dt > 0)) time.fail("dt", fmt::format("must be finite and > 0 s (got {:g})", *dt));
+  layout.dt = *dt;
+  const auto samples = time.integer("samples");
+  if (!samples) time.missing("samples", "the number of samples per probe");
+  if (*samples < 2 || *samples > (std::int64_t(1) << 31)) {
+    time.fail("samples", fmt::format("must be in 2…2³¹ (got {})", *samples));
+  }
+  layout.samples = std::size_t(*samples);
+  out.ocean.t0 = layout.t0;
+  out.ocean.dt = layout.dt;
+}
+
+// [synthesis] seed: an integer in 0…2⁶⁴−1 (a TOML integer, or a decimal string beyond 2⁶³ − 1).
+void read_seed(const Section& synthesis, std::uint64_t& into) {
+  if (const toml::node* seed = synthesis.find("seed")) {
+    // TOML integers stop at 2⁶³ − 1; a larger uint64 seed is written as a decimal string.
+    if (auto v = seed->as_integer()) {
+      if (v->get() < 0) synthesis.fail("seed", fmt::format("must be ≥ 0 (got {})", v->get()));
+      into = static_cast<std::uint64_t>(v->get());
+    } else if (auto s = seed->as_string()) {
+      const std::string& digits = s->get();
+      const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), into);
+      if (digits.empty() || result.ec != std::errc() || result.ptr != digits.data() + digits.size()) {
+        synthesis.fail("seed", "must be an integer in 0…2⁶⁴−1 (got \"" + digits + "\")");
+      }
+    } else {
+      synthesis.wrong_type("seed", "an integer ≥ 0");
+    }
+  }
+}
+
+// [synthesis] of a probes case: the seed and how the engine makes its lines
+// (reference/probe_sea.hpp).
+void read_probe_synthesis(const Section& synthesis, CaseFile& out) {
+  synthesis.allow_only({"seed", "amplitudes", "frequencies", "repeat_period", "omega_cutoff", "directions",
+                        "n_directions", "n_frequencies"},
+                       " (a probes case)");
+  read_seed(synthesis, out.ocean.seed);
+  auto& s = out.probes->synthesis;
+  auto choice = [&](const char* key, auto parse, auto& into) {
+    if (const auto value = synthesis.string(key)) {
+      try {
+        into = parse(*value);
+      } catch (const InvalidInput& e) {
+        synthesis.fail(key, e.what());
+      }
+    }
+  };
+  choice("amplitudes", reference::probe_amplitudes_from_string, s.amplitudes);
+  choice("frequencies", reference::probe_frequencies_from_string, s.frequencies);
+  choice("directions", reference::probe_directions_from_string, s.directions);
+  s.repeat_period = synthesis.number_or("repeat_period", 0);
+  if (const auto band = synthesis.number_pair("omega_cutoff")) {
+    if (!synthesis.find("omega_cutoff")->is_array()) {
+      synthesis.wrong_type("omega_cutoff", "an array [low, high] in rad/s");
+    }
+    s.omega_low = (*band)[0];
+    s.omega_high = (*band)[1];
+  } else {
+    synthesis.missing("omega_cutoff", "[low, high] in rad/s: the band the engine synthesizes");
+  }
+  if (const auto n = synthesis.integer("n_directions")) s.n_directions = checked_int(synthesis, "n_directions", *n, 1);
+  if (const auto n = synthesis.integer("n_frequencies")) {
+    s.n_frequencies = checked_int(synthesis, "n_frequencies", *n, 1);
+  }
+}
+
+// [input] of a probes case: files (.csv, .out, .npy), time_column and probes (CSV and .out).
+ProbeInput read_probe_input(const Section& input, std::size_t probes) {
+  input.allow_only({"files", "time_column", "probes"}, " (a probes case)");
+  ProbeInput out;
+  if (!input.present()) return out;
+  if (const auto files = input.string("files")) {
+    std::string ext = fs::path(*files).extension().string();
+    for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (ext != ".csv" && ext != ".out" && ext != ".npy") {
+      input.fail("files", fmt::format("extension '{}' is not one a probes case reads (.csv, .out "
+                                      "from OpenFAST, .npy of samples × probes)",
+                                      ext));
+    }
+    out.files = *files;
+  }
+  out.time_column = input.string("time_column").value_or("");
+  if (const toml::node* names = input.find("probes")) {
+    const auto* list = names->as_array();
+    if (!list) input.wrong_type("probes", "an array of column names, one per probe");
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const auto* name = list->get(i)->as_string();
+      if (!name || name->get().empty()) {
+        input.fail("probes", fmt::format("entry {} is not a column name (a non-empty string)", i));
+      }
+      out.probes.push_back(name->get());
+    }
+    if (out.probes.size() != probes) {
+      input.fail("probes", fmt::format("names {} columns for {} probes in [sampling] positions",
+                                       out.probes.size(), probes));
+    }
+  }
+  return out;
+}
+
 // [sampling] kind = "grid" (the default: [grid] n and length) or "lattice" (points and
 // generator here, [grid] length only; docs/conventions.md §2.1). [grid] n, length: required
 // (length only for a lattice); a cascade set gives a grid per [[cascade]] instead.
@@ -578,10 +728,17 @@ void read_sampling(const Reporter& report, const toml::table& document, CaseFile
   auto& ocean = out.ocean;
   auto section = [&](const std::string& name) { return section_of(report, document, name); };
   const Section sampling = section("sampling");
-  sampling.allow_only({"kind", "points", "generator"});
+  sampling.allow_only({"kind", "points", "generator", "positions"});
   const std::string kind = sampling.string("kind").value_or("grid");
-  if (kind != "grid" && kind != "lattice") {
-    sampling.fail("kind", fmt::format("must be \"grid\" or \"lattice\" (got \"{}\")", kind));
+  if (kind != "grid" && kind != "lattice" && kind != "probes") {
+    sampling.fail("kind", fmt::format("must be \"grid\", \"lattice\" or \"probes\" (got \"{}\")", kind));
+  }
+  if (kind != "probes" && sampling.has("positions")) {
+    sampling.fail("positions", "belongs to kind = \"probes\" (the points where the elevation is sampled)");
+  }
+  if (kind == "probes") {
+    read_probe_positions(report, document, sampling, out);
+    return;
   }
   const bool lattice = kind == "lattice";
   if (!lattice && (sampling.has("points") || sampling.has("generator"))) {
@@ -887,21 +1044,7 @@ void read_synthesis(const Section& synthesis, reference::OceanCase& ocean) {
   synthesis.allow_only({"choppiness", "loop_period", "seed"});
   ocean.choppiness = synthesis.number_or("choppiness", 1);
   ocean.loop_period = synthesis.number_or("loop_period", 0);
-  if (const toml::node* seed = synthesis.find("seed")) {
-    // TOML integers stop at 2⁶³ − 1; a larger uint64 seed is written as a decimal string.
-    if (auto v = seed->as_integer()) {
-      if (v->get() < 0) synthesis.fail("seed", fmt::format("must be ≥ 0 (got {})", v->get()));
-      ocean.seed = static_cast<std::uint64_t>(v->get());
-    } else if (auto s = seed->as_string()) {
-      const std::string& digits = s->get();
-      const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), ocean.seed);
-      if (digits.empty() || result.ec != std::errc() || result.ptr != digits.data() + digits.size()) {
-        synthesis.fail("seed", "must be an integer in 0…2⁶⁴−1 (got \"" + digits + "\")");
-      }
-    } else {
-      synthesis.wrong_type("seed", "an integer ≥ 0");
-    }
-  }
+  read_seed(synthesis, ocean.seed);
 }
 
 // The rules of the case as a whole (OceanCase::validate, each cascade's, and an additive set's
@@ -948,15 +1091,40 @@ CaseFile parse_case_toml(const std::string& text, const fs::path& origin) {
   out.origin = origin;
   out.directory = origin.parent_path();
   read_sampling(report, document, out);
-  read_time(section("time"), out.ocean);
+  if (out.is_probe_case()) {
+    read_probe_time(section("time"), out);
+  } else {
+    read_time(section("time"), out.ocean);
+  }
   read_physics(section("physics"), out.ocean);
   read_sea(report, document, out);
+  if (out.is_probe_case()) {
+    read_probe_synthesis(section("synthesis"), out);
+    out.probes->input = read_probe_input(section("input"), out.probes->layout.positions.size());
+    try {
+      out.probe_case().validate();
+    } catch (const InvalidInput& e) {
+      report.fail(e.what());
+    } catch (const NumericalError& e) {
+      report.fail(fmt::format("the case's spectrum cannot be evaluated with these parameters: {}", e.what()));
+    }
+    return out;
+  }
   read_synthesis(section("synthesis"), out.ocean);
   // [input]: the frames' pattern, one channel (or file suffix) per field provided.
   out.input = read_input(report, section("input"));
   read_cascades(report, document, out);
   if (out.is_cascade_set()) out.ocean.grid = out.cascades.front().grid;
   validate_case(report, out);
+  return out;
+}
+
+reference::ProbeCase CaseFile::probe_case() const {
+  if (!probes) throw InternalError("probe_case() of a case that is not a probes case");
+  reference::ProbeCase out;
+  out.sea = ocean;
+  out.layout = probes->layout;
+  out.synthesis = probes->synthesis;
   return out;
 }
 
@@ -996,6 +1164,11 @@ std::optional<reference::OceanCase> CaseFile::summed_case(std::string* why) cons
 }
 
 void require_single_grid(const CaseFile& case_file, const std::string& command) {
+  if (case_file.is_probe_case()) {
+    throw InvalidInput(fmt::format("{} takes a single-grid case; this one samples {} probes (swell synth "
+                                   "makes their series and swell gate judges them)",
+                                   command, case_file.probes->layout.positions.size()));
+  }
   if (!case_file.is_cascade_set()) return;
   throw InvalidInput(fmt::format("{} takes a single-grid case; this one is a set of {} cascades "
                                  "(swell synth makes them and swell gate judges them)",
@@ -1050,10 +1223,19 @@ void write_input(std::string& out, const std::string& header, const InputSpec& i
 std::string case_toml(const CaseFile& case_file) {
   const auto& c = case_file.ocean;
   std::string out = "# swell case file (docs/case_files.md)\n";
-  std::string summary = c.describe();
+  std::string summary = case_file.is_probe_case() ? case_file.probe_case().describe() : c.describe();
   std::replace(summary.begin(), summary.end(), '\n', ' ');  // stays one comment line
   out += fmt::format("# {}\n\n", summary);
-  if (case_file.is_cascade_set()) {
+  if (case_file.is_probe_case()) {
+    const auto& layout = case_file.probes->layout;
+    std::string positions;
+    for (const auto& [x, y] : layout.positions) {
+      positions += fmt::format("{}[{}, {}]", positions.empty() ? "" : ", ", toml_number(x), toml_number(y));
+    }
+    out += fmt::format("[sampling]\nkind = \"probes\"\npositions = [{}]\n\n", positions);
+    out += fmt::format("[time]\nt0 = {}\ndt = {}\nsamples = {}\n\n", toml_number(layout.t0),
+                       toml_number(layout.dt), layout.samples);
+  } else if (case_file.is_cascade_set()) {
     // [[cascade]] tables below
   } else if (c.is_lattice()) {
     const auto& g = c.lattice->generator();
@@ -1065,8 +1247,10 @@ std::string case_toml(const CaseFile& case_file) {
     out += fmt::format("[grid]\nn = [{}, {}]\nlength = [{}, {}]\n\n", c.grid.nx, c.grid.ny,
                        toml_number(c.grid.lx), toml_number(c.grid.ly));
   }
-  out += fmt::format("[time]\nt0 = {}\ndt = {}\nframes = {}\n\n", toml_number(c.t0),
-                     toml_number(c.dt), c.frames);
+  if (!case_file.is_probe_case()) {
+    out += fmt::format("[time]\nt0 = {}\ndt = {}\nframes = {}\n\n", toml_number(c.t0),
+                       toml_number(c.dt), c.frames);
+  }
   out += fmt::format("[physics]\ngravity = {}\ndepth = {}\n\n", toml_number(c.gravity),
                      std::isinf(c.depth) && c.depth > 0 ? "\"inf\"" : toml_number(c.depth));
 
@@ -1091,10 +1275,16 @@ std::string case_toml(const CaseFile& case_file) {
     if (part.short_wave_fade != 0) {
       out += fmt::format("short_wave_fade = {}\n", toml_number(part.short_wave_fade));
     }
-    if (direction_in_spectrum) {
+    // A long-crested probes sea without a spreading model keeps its direction in [spreading].
+    const bool direction_alone = direction_in_spectrum && case_file.is_probe_case() && part.spectrum.model != "phillips";
+    if (direction_in_spectrum && !direction_alone) {
       out += fmt::format("wind_dir_deg = {}\n", toml_number(part.wind_dir_deg));
     }
     out += "\n";
+    if (direction_alone) {
+      out += fmt::format("{}\nwind_dir_deg = {}\n\n", composite ? "[spectrum.spreading]" : "[spreading]",
+                         toml_number(part.wind_dir_deg));
+    }
     if (!part.spreading.model.empty()) {
       out += fmt::format("{}\nmodel = {}\n", composite ? "[spectrum.spreading]" : "[spreading]",
                          toml_string(part.spreading.model));
@@ -1107,6 +1297,30 @@ std::string case_toml(const CaseFile& case_file) {
       c.seed > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())
           ? fmt::format("\"{}\"", c.seed)
           : fmt::format("{}", c.seed);
+  if (case_file.is_probe_case()) {
+    const auto& p = *case_file.probes;
+    const auto& s = p.synthesis;
+    out += fmt::format("[synthesis]\nseed = {}\namplitudes = \"{}\"\nfrequencies = \"{}\"\n"
+                       "repeat_period = {}\nomega_cutoff = [{}, {}]\ndirections = \"{}\"\n",
+                       seed, to_string(s.amplitudes), to_string(s.frequencies), toml_number(s.repeat_period),
+                       toml_number(s.omega_low), toml_number(s.omega_high), to_string(s.directions));
+    if (s.directions == reference::ProbeDirections::double_summation) {
+      out += fmt::format("n_directions = {}\n", s.n_directions);
+    }
+    if (s.frequencies != reference::ProbeFrequencies::uniform) {
+      out += fmt::format("n_frequencies = {}\n", s.n_frequencies);
+    }
+    if (!p.input.files.empty()) {
+      out += fmt::format("\n[input]\nfiles = {}\n", toml_string(p.input.files));
+      if (!p.input.time_column.empty()) out += fmt::format("time_column = {}\n", toml_string(p.input.time_column));
+      if (!p.input.probes.empty()) {
+        std::string names;
+        for (const auto& name : p.input.probes) names += (names.empty() ? "" : ", ") + toml_string(name);
+        out += fmt::format("probes = [{}]\n", names);
+      }
+    }
+    return out;
+  }
   out += fmt::format("[synthesis]\nchoppiness = {}\nloop_period = {}\nseed = {}\n",
                      toml_number(c.choppiness), toml_number(c.loop_period), seed);
 

@@ -86,6 +86,9 @@ struct OceanCase {
 
   // Checks it and throws InvalidInput naming the first thing wrong.
   void validate() const;
+  // The rules of the sea alone — time origin and step, physics, components, choppiness, loop
+  // period — without its samples (a probes case has none on a grid).
+  void validate_sea() const;
 
   double time(int frame) const { return t0 + frame * dt; }
   // ω(|k|) of the case: its dispersion relation, quantized by the loop period if one is set.
@@ -103,6 +106,7 @@ struct OceanCase {
   ModelSpec full_spectrum_spec(const SeaComponent& component) const;
   // Ψ(k) of one component, its energy factor and fade applied.
   DirectionalSpectrumPtr component_spectrum(const SeaComponent& component) const;
+  std::string describe_sea() const;  // "jonswap hs=3 tp=8 gamma=3.3 + cos2s s=10"
   std::string describe() const;  // "jonswap hs=3 tp=8 gamma=3.3 + cos2s s=10, 256×256 over 200×200 m"
 };
 

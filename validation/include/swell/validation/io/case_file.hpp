@@ -24,6 +24,7 @@
 #include "swell/reference/cascade.hpp"
 #include "swell/reference/fields.hpp"
 #include "swell/reference/ocean_case.hpp"
+#include "swell/reference/probe_sea.hpp"
 
 namespace swell::validation {
 
@@ -61,12 +62,37 @@ struct CascadeInput {
   InputSpec input;
 };
 
+// Where a probes case's series are ([input] of a case with [sampling] kind = "probes"): a CSV
+// file (a header, a time column, one column per probe), an OpenFAST .out table (its preamble,
+// a line of names, a line of units, then whitespace-separated rows), or .npy (samples × probes,
+// in the positions' order).
+struct ProbeInput {
+  std::string files;                // relative to the case file
+  std::string time_column;          // CSV and .out: the time column's name
+  std::vector<std::string> probes;  // CSV and .out: one column name per probe, in positions' order
+};
+
+// A probes case's sampling and synthesis ([sampling] positions, [time] t0, dt, samples, the
+// [synthesis] scheme) and its series.
+struct ProbeSetup {
+  reference::ProbeLayout layout;
+  reference::ProbeSynthesis synthesis;
+  ProbeInput input;
+};
+
 struct CaseFile {
   reference::OceanCase ocean;
   InputSpec input;
   SpectrumScale scale = SpectrumScale::absolute;
   std::filesystem::path origin;     // the case file read (the name given to parse_case_toml)
   std::filesystem::path directory;  // the case file's directory: base of relative paths
+
+  // A probes case ([sampling] kind = "probes"; docs/probes.md): the elevation series at points
+  // instead of frames. `ocean` then holds the sea (its grid unused) and `input` is empty.
+  std::optional<ProbeSetup> probes;
+  bool is_probe_case() const { return probes.has_value(); }
+  // The sea with its probes, for the probe synthesis and checks (is_probe_case() only).
+  reference::ProbeCase probe_case() const;
 
   // A cascade set ([cascades] and [[cascade]] tables; docs/conventions.md §2.2): empty for a
   // single-grid case. `ocean` then holds what the cascades share, with cascade 0's grid, and

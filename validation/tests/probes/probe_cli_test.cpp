@@ -1,0 +1,163 @@
+// Probes from the command line (docs/probes.md): swell synth writes series that swell gate
+// passes, for each amplitude law and direction scheme the gate judges; a deep-water dispersion
+// in finite depth and an energy factor are named; OpenFAST's .out tables are read; bad cases
+// exit 2 naming what is wrong.
+#include <gtest/gtest.h>
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+
+#include "cli_support.hpp"
+#include "swell/validation/io/case_file.hpp"
+#include "swell/validation/io/probe_series.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using swell::test::swell;
+
+class ProbeCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("swell_probe_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  void write(const std::string& name, const std::string& text) const { std::ofstream(dir_ / name) << text; }
+  fs::path dir_;
+};
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// The OpenFAST sea, shortened: JONSWAP Hs 3 m, Tp 10 s, γ 3.3 in 30 m of water, three
+// probes, 4096 samples at 0.25 s — one repeat period of 1024 s.
+std::string probes_case(const std::string& synthesis, const std::string& spreading = "wind_dir_deg = 30.0\n",
+                        const std::string& depth = "30.0") {
+  return "[sampling]\nkind = \"probes\"\npositions = [[0.0, 0.0], [10.0, 0.0], [0.0, 10.0]]\n"
+         "[time]\nt0 = 0.0\ndt = 0.25\nsamples = 4096\n"
+         "[physics]\ndepth = " + depth + "\n"
+         "[spectrum]\nmodel = \"jonswap\"\nhs = 3.0\ntp = 10.0\ngamma = 3.3\n"
+         "[spreading]\n" + spreading +
+         "[synthesis]\nseed = 7\nrepeat_period = 1024.0\nomega_cutoff = [0.0, 6.0]\n" + synthesis;
+}
+
+TEST_F(ProbeCli, SynthThenGatePassForEachSchemeTheGateJudges) {
+  const std::pair<const char*, std::string> schemes[] = {
+      {"deterministic_long_crested", probes_case("amplitudes = \"deterministic\"\ndirections = \"long_crested\"\n")},
+      {"rayleigh_long_crested", probes_case("amplitudes = \"rayleigh\"\ndirections = \"long_crested\"\n")},
+      {"rayleigh_double_summation",
+       probes_case("amplitudes = \"rayleigh\"\ndirections = \"double_summation\"\nn_directions = 15\n",
+                   "model = \"cos2s\"\ns = 10.0\nwind_dir_deg = 30.0\n")},
+      {"deterministic_single",
+       probes_case("amplitudes = \"deterministic\"\ndirections = \"single_per_frequency\"\n",
+                   "model = \"cos2s\"\ns = 10.0\nwind_dir_deg = 30.0\n")},
+  };
+  for (const auto& [name, text] : schemes) {
+    SCOPED_TRACE(name);
+    write(std::string(name) + ".toml", text);
+    const auto synth = swell("synth --case " + path(std::string(name) + ".toml") + " --out " + path(name));
+    ASSERT_EQ(synth.exit_code, 0) << synth.output;
+    const auto gate = swell("gate --case " + path(std::string(name) + "/case.toml"));
+    EXPECT_EQ(gate.exit_code, 0) << gate.output;
+    EXPECT_TRUE(contains(gate.output, "PASS  series.spectrum")) << gate.output;
+    EXPECT_TRUE(contains(gate.output, "PASS  series.stray_energy")) << gate.output;
+  }
+}
+
+// Series made in deep water, judged as the 30 m case: the exact phase check names the
+// dispersion; series scaled by 2π (amplitudes × 2π): the energy check names × 4π².
+TEST_F(ProbeCli, ADeepWaterDispersionAndAScaledAmplitudeAreNamed) {
+  const std::string scheme = "amplitudes = \"deterministic\"\ndirections = \"long_crested\"\n";
+  write("deep.toml", probes_case(scheme, "wind_dir_deg = 30.0\n", "\"inf\""));
+  ASSERT_EQ(swell("synth --case " + path("deep.toml") + " --out " + path("deep")).exit_code, 0);
+  // The same series judged against the 30 m case, its [input] the deep run's file.
+  write("deep/shallow.toml", probes_case(scheme) + "[input]\nfiles = \"elevation.csv\"\ntime_column = \"time\"\n"
+                                                   "probes = [\"probe0\", \"probe1\", \"probe2\"]\n");
+  const auto gate = swell("gate --case " + path("deep/shallow.toml"));
+  EXPECT_EQ(gate.exit_code, 1) << gate.output;
+  EXPECT_TRUE(contains(gate.output, "FAIL  series.phase")) << gate.output;
+  EXPECT_TRUE(contains(gate.output, "deep-water k = ω²/g where the case's depth is 30 m")) << gate.output;
+
+  write("right.toml", probes_case(scheme));
+  ASSERT_EQ(swell("synth --case " + path("right.toml") + " --out " + path("right")).exit_code, 0);
+  auto c = swell::validation::read_case_file(dir_ / "right" / "case.toml");
+  auto series = swell::validation::read_probe_series(c);
+  for (auto& probe : series.elevation) {
+    for (double& v : probe) v *= 2 * 3.141592653589793;
+  }
+  swell::validation::write_probe_series_csv(dir_ / "right" / "elevation.csv", c.probes->layout, series.elevation,
+                                            c.probes->input.probes);
+  const auto scaled = swell("gate --case " + path("right/case.toml"));
+  EXPECT_EQ(scaled.exit_code, 1) << scaled.output;
+  EXPECT_TRUE(contains(scaled.output, "FAIL  series.energy")) << scaled.output;
+  EXPECT_TRUE(contains(scaled.output, "× 4π²")) << scaled.output;
+}
+
+// An OpenFAST SeaState .out table: preamble, names, units, whitespace-separated rows printed
+// to ES-style precision; the gate reads it, its rounding bounding the exact checks.
+TEST_F(ProbeCli, AnOpenFastOutTableIsRead) {
+  const std::string scheme = "amplitudes = \"deterministic\"\ndirections = \"long_crested\"\n";
+  write("case.toml", probes_case(scheme));
+  ASSERT_EQ(swell("synth --case " + path("case.toml") + " --out " + path("made")).exit_code, 0);
+  auto c = swell::validation::read_case_file(dir_ / "made" / "case.toml");
+  const auto series = swell::validation::read_probe_series(c);
+  std::ofstream out(dir_ / "made" / "driver.out");
+  out << "\n Predictions were generated on 06-Dec-2026 at 10:00:00 using SeaState\n linked with OpenFAST\n\n"
+         " Description from the driver input file: a test\n\n";
+  out << "Time      Wave1Elev Wave2Elev Wave3Elev\n(s)       (m)       (m)       (m)\n";
+  for (std::size_t n = 0; n < c.probes->layout.samples; ++n) {
+    out << fmt::format("{:.4f}", c.probes->layout.time(n));
+    for (const auto& probe : series.elevation) out << fmt::format("  {:.9E}", probe[n]);
+    out << "\n";
+  }
+  out.close();
+  write("made/openfast.toml", probes_case(scheme) + "[input]\nfiles = \"driver.out\"\ntime_column = \"Time\"\n"
+                                                    "probes = [\"Wave1Elev\", \"Wave2Elev\", \"Wave3Elev\"]\n");
+  const auto gate = swell("gate --case " + path("made/openfast.toml"));
+  EXPECT_EQ(gate.exit_code, 0) << gate.output;
+  // A missing column is named.
+  write("made/missing.toml", probes_case(scheme) + "[input]\nfiles = \"driver.out\"\ntime_column = \"Time\"\n"
+                                                   "probes = [\"Wave1Elev\", \"Wave2Elev\", \"Wave9Elev\"]\n");
+  const auto missing = swell("gate --case " + path("made/missing.toml"));
+  EXPECT_EQ(missing.exit_code, 2) << missing.output;
+  EXPECT_TRUE(contains(missing.output, "Wave9Elev")) << missing.output;
+}
+
+TEST_F(ProbeCli, BadProbeCasesExitTwoNamingTheProblem) {
+  const std::pair<std::string, std::string> cases[] = {
+      {probes_case("amplitudes = \"gaussian\"\n"), "amplitudes"},
+      {probes_case("directions = \"double_summation\"\nn_directions = 5\n"), "spreading model"},
+      {probes_case("n_directions = 5\n"), "n_directions"},
+      {probes_case("choppiness = 1.0\n"), "choppiness"},
+  };
+  int i = 0;
+  for (const auto& [text, part] : cases) {
+    write("bad" + std::to_string(i) + ".toml", text);
+    const auto run = swell("synth --case " + path("bad" + std::to_string(i) + ".toml") + " --out " + path("o"));
+    EXPECT_EQ(run.exit_code, 2) << run.output;
+    EXPECT_TRUE(contains(run.output, part)) << part << "\n" << run.output;
+    ++i;
+  }
+  // Above the Nyquist frequency π/dt = 12.6 rad/s.
+  std::string high = probes_case("");
+  high.replace(high.find("omega_cutoff = [0.0, 6.0]"), 25, "omega_cutoff = [0.0, 20.0]");
+  write("high.toml", high);
+  const auto run = swell("synth --case " + path("high.toml") + " --out " + path("o"));
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, "Nyquist")) << run.output;
+  // swell fit takes grids, and names what this case is.
+  write("good.toml", probes_case(""));
+  const auto fit = swell("fit --case " + path("good.toml") + " --input " + path("frame_%04d.exr"));
+  EXPECT_EQ(fit.exit_code, 2) << fit.output;
+  EXPECT_TRUE(contains(fit.output, "probes")) << fit.output;
+}
+
+}  // namespace
