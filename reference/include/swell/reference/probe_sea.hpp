@@ -1,5 +1,5 @@
 #pragma once
-// Seas as time series at points (docs/conventions.md §2.3, docs/probes.md): the elevation at
+// Seas as time series at points (docs/conventions.md §2.4, docs/probes.md): the elevation at
 // probes x_p, sampled at t_n = t0 + n dt, synthesized as offshore engines do — a sum of wave
 // lines
 //
