@@ -124,34 +124,44 @@ double WeightedExponentialSum::cdf(double x) const { return tail(x, false); }
 double WeightedExponentialSum::survival(double x) const { return tail(x, true); }
 
 double mixed_exponential_sum_cdf_at_zero(const std::vector<double>& coefficients) {
+  return mixed_exponential_sum_cdf(coefficients, 0.0);
+}
+
+double mixed_exponential_sum_cdf(const std::vector<double>& coefficients, double x) {
   std::vector<double> c;
   double lowest = 0, highest = 0, mean = 0, variance = 0;
-  for (double x : coefficients) {
-    if (!std::isfinite(x)) throw NumericalError("mixed_exponential_sum_cdf_at_zero: a coefficient is not finite");
-    if (x == 0) continue;
-    c.push_back(x);
-    lowest = std::min(lowest, x);
-    highest = std::max(highest, x);
-    mean += x;
-    variance += x * x;
+  for (double v : coefficients) {
+    if (!std::isfinite(v)) throw NumericalError("mixed_exponential_sum_cdf: a coefficient is not finite");
+    if (v == 0) continue;
+    c.push_back(v);
+    lowest = std::min(lowest, v);
+    highest = std::max(highest, v);
+    mean += v;
+    variance += v * v;
   }
-  if (highest == 0) return 1.0;  // every term ≤ 0 (or none)
-  if (lowest == 0) return 0.0;   // every term > 0
+  if (!std::isfinite(x)) throw NumericalError("mixed_exponential_sum_cdf: the threshold is not finite");
+  if (c.empty()) return x >= 0 ? 1.0 : 0.0;
+  // One sign only: the sum lies on one side of 0.
+  if (highest == 0 && x >= 0) return 1.0;
+  if (lowest == 0 && x <= 0) return 0.0;
   const double sd = std::sqrt(variance);
-  if (std::abs(mean) < 1e-3 * sd) return 0.5 * std::erfc(mean / sd / std::numbers::sqrt2);
-  // K'(s) = Σ c/(1 − c s) rises from −∞ at s = 1/lowest to +∞ at s = 1/highest; solve K'(s) = 0.
-  double lo = 1 / lowest, hi = 1 / highest;
-  double s = -mean / variance;  // the normal approximation's saddlepoint
-  if (!(s > lo && s < hi)) s = 0.5 * (lo + hi);
+  if (std::abs(mean - x) < 1e-3 * sd) return 0.5 * std::erfc((mean - x) / sd / std::numbers::sqrt2);
+  // K'(s) = Σ c/(1 − c s) rises over (1/lowest, 1/highest) (an end at ±∞ where every c has one
+  // sign); solve K'(s) = x inside it.
+  double lo = lowest < 0 ? 1 / lowest : -std::numeric_limits<double>::max();
+  double hi = highest > 0 ? 1 / highest : std::numeric_limits<double>::max();
+  double s = (x - mean) / variance;  // the normal approximation's saddlepoint
+  if (!(s > lo && s < hi)) s = 0.5 * (std::max(lo, -1e300) + std::min(hi, 1e300));
   double k2 = 0;
   for (int iteration = 0; iteration < 300; ++iteration) {
     double d1 = 0;
     k2 = 0;
-    for (double x : c) {
-      const double t = x / (1 - x * s);
+    for (double v : c) {
+      const double t = v / (1 - v * s);
       d1 += t;
       k2 += t * t;
     }
+    d1 -= x;
     if (d1 > 0) hi = s; else lo = s;
     double next = s - d1 / k2;  // Newton inside the bracket
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
@@ -163,16 +173,16 @@ double mixed_exponential_sum_cdf_at_zero(const std::vector<double>& coefficients
   }
   k2 = 0;
   double k = 0;
-  for (double x : c) {
-    const double t = x / (1 - x * s);
+  for (double v : c) {
+    const double t = v / (1 - v * s);
     k2 += t * t;
-    k -= std::log1p(-x * s);
+    k -= std::log1p(-v * s);
   }
-  const double r = (s > 0 ? 1 : -1) * std::sqrt(std::max(0.0, -2 * k));
+  const double r = (s > 0 ? 1 : -1) * std::sqrt(std::max(0.0, 2 * (s * x - k)));
   const double q = s * std::sqrt(k2);
   const double phi = std::exp(-0.5 * r * r) / std::sqrt(2 * std::numbers::pi);
   const double correction = phi * (1 / r - 1 / q);
-  if (r == 0 || !std::isfinite(correction)) return 0.5 * std::erfc(mean / sd / std::numbers::sqrt2);
+  if (r == 0 || !std::isfinite(correction)) return 0.5 * std::erfc((mean - x) / sd / std::numbers::sqrt2);
   return std::clamp(0.5 * std::erfc(-r / std::numbers::sqrt2) + correction, 0.0, 1.0);
 }
 

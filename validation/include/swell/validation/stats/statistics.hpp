@@ -44,6 +44,8 @@ class WeightedExponentialSum {
 // (Butler 2007, §1.2; Daniels 1987 for ratios); 0 when every c > 0, 1 when every c < 0, the
 // normal law within 1e-3 sd of the mean, where Lugannani–Rice is 0/0.
 double mixed_exponential_sum_cdf_at_zero(const std::vector<double>& coefficients);
+// P(Σ c_i E_i ≤ x): the same at any threshold x (K'(s) = x).
+double mixed_exponential_sum_cdf(const std::vector<double>& coefficients, double x);
 
 // Anderson–Darling statistic A² of a sample against a fully specified continuous distribution,
 // given the sample's CDF values u_i = F(x_i) (any order) and their logs of survival
