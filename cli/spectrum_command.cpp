@@ -277,7 +277,26 @@ Action add_spectrum_command(CLI::App& app) {
   }
   app.add_option("--omega", o->omega, "frequencies in rad/s: a:b:n or w1,w2,… (default ωp/4:4ωp:16)");
   app.add_option("--json", o->json, "write JSON to FILE, or - for standard output");
-  app.footer("A parameter a model does not take is an error. JSON: {model, params, omega, S, "
+  // Each model with the parameters it takes and their units, spectra then spreadings.
+  auto listing = [](const std::vector<std::string>& names) {
+    std::string out;
+    for (const auto& model : names) {
+      std::string parameters;
+      for (const auto& info : reference::model_parameters(model)) {
+        if (info.name == "gravity" || info.name == "depth" || info.name == "wind_dir") continue;
+        parameters += (parameters.empty() ? "" : ", ") + info.name + (info.unit.empty() ? "" : " [" + info.unit + "]");
+      }
+      out += "\n  " + model + ": " + (parameters.empty() ? "none" : parameters);
+    }
+    return out;
+  };
+  app.footer("Spectrum models and their parameters:" + listing(models) +
+             "\nSpreading models (case files' [spreading], swell synth --spreading):" +
+             listing(reference::spreading_model_names()) +
+             "\nAny spectrum of a case file also takes energy_factor (the engine's energy over the "
+             "declared) and short_wave_fade [m] (Ψ·e^(−k²l²)); tables: model = \"table\" or \"ndbc\" "
+             "(docs/case_files.md).\n"
+             "A parameter a model does not take is an error. JSON: {model, params, omega, S, "
              "moments: {m0, m1, m2, m4, m_1, hs, tp, tm01, tm02, te, …}}; a moment that "
              "diverges (m4 of an ω⁻⁵ tail, m_1 of a spectrum with S(0⁺) > 0) is null. With "
              "--case: the omnidirectional S(ω) of each component of the case's sea (its "

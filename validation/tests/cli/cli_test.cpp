@@ -215,6 +215,13 @@ TEST(Cli, HelpExitsZero) {
   const auto run = swell("spectrum --help");
   EXPECT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("--sigma-a"), std::string::npos) << run.output;
+  // Every model with its parameters and units, the spreadings too.
+  for (const char* line : {"gaussian: hs [m], tp [s], sigma [rad/s]",
+                           "ochi-hubble: hs1 [m], tp1 [s], lambda1, hs2 [m], tp2 [s], lambda2",
+                           "torsethaugen: hs [m], tp [s]", "horvath: wave_age, swell, spread_blend",
+                           "short_wave_fade [m]"}) {
+    EXPECT_NE(run.output.find(line), std::string::npos) << line << "\n" << run.output;
+  }
 }
 
 }  // namespace
