@@ -98,7 +98,7 @@ double inverse_direction_cdf(const std::vector<double>& density, double from, do
   return from + 2 * kPi;
 }
 
-constexpr int kDirectionCells = 3600;  // 0.1°: D's tails and narrow swells resolved
+constexpr int kDirectionCells = 720;  // 0.5°: D's tails and narrow swells resolved
 
 }  // namespace
 

@@ -352,18 +352,19 @@ ProbeCheckReport run_probe_checks(const ProbeCase& c, const std::vector<std::vec
   }
   ProbeCheckReport report;
   const LineBins lines = line_bins(c);
-  const std::vector<std::string> all = {"series.spectrum", "series.energy", "series.stray_energy", "series.phase"};
   if (!lines.periodic) {
-    const std::string why =
+    // Refused rather than passed with every check skipped: a gate that judges nothing must not
+    // say PASS.
+    throw InvalidInput(
         c.synthesis.frequencies != ProbeFrequencies::uniform
-            ? fmt::format("frequencies = \"{}\": the lines do not fall on the record's bins; their law "
-                          "needs Welch estimates, which swell does not judge yet",
+            ? fmt::format("frequencies = \"{}\": the lines do not fall on the record's bins, and their "
+                          "law (Welch estimates) is not one swell judges yet; swell judges records of "
+                          "whole repeat periods of uniform lines",
                           to_string(c.synthesis.frequencies))
-            : fmt::format("the record ({:g} s) is not a whole number of repeat periods ({:g} s): the lines "
-                          "do not fall on its bins; record whole repeat periods",
-                          c.layout.duration(), c.synthesis.repeat_period);
-    for (const auto& name : all) report.skipped.push_back({name, SkipReason::record_not_periodic, why});
-    return report;
+            : fmt::format("the record ({:g} s = samples × dt) is not a whole number of repeat periods "
+                          "({:g} s): the lines do not fall on its bins; swell judges records of whole "
+                          "repeat periods (give samples = a multiple of repeat_period/dt)",
+                          c.layout.duration(), c.synthesis.repeat_period));
   }
   std::vector<ProbeSpectrum> spectra;
   for (std::size_t p = 0; p < elevation.size(); ++p) spectra.push_back(probe_spectrum(elevation[p], rounding[p]));

@@ -153,6 +153,24 @@ TEST_F(ProbeCli, BadProbeCasesExitTwoNamingTheProblem) {
   const auto run = swell("synth --case " + path("high.toml") + " --out " + path("o"));
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_TRUE(contains(run.output, "Nyquist")) << run.output;
+  // A record that is not whole repeat periods, or non-uniform lines, is refused by the gate
+  // (exit 2, saying why), not passed with nothing judged.
+  for (const auto& [scheme, part] :
+       {std::pair<std::string, std::string>{"repeat_period = 1000.0\n", "whole number of repeat periods"},
+        std::pair<std::string, std::string>{"frequencies = \"equal_energy\"\nn_frequencies = 200\n", "equal_energy"}}) {
+    std::string text = probes_case("");
+    if (scheme.rfind("repeat", 0) == 0) {
+      text.replace(text.find("repeat_period = 1024.0"), 22, "repeat_period = 1000.0");
+    } else {
+      text.replace(text.find("repeat_period = 1024.0"), 22, "repeat_period = 0.0");
+      text += scheme;
+    }
+    write("unjudged.toml", text);
+    ASSERT_EQ(swell("synth --case " + path("unjudged.toml") + " --out " + path("unjudged")).exit_code, 0);
+    const auto gate = swell("gate --case " + path("unjudged/case.toml"));
+    EXPECT_EQ(gate.exit_code, 2) << gate.output;
+    EXPECT_TRUE(contains(gate.output, part)) << part << "\n" << gate.output;
+  }
   // swell fit takes grids, and names what this case is.
   write("good.toml", probes_case(""));
   const auto fit = swell("fit --case " + path("good.toml") + " --input " + path("frame_%04d.exr"));

@@ -15,7 +15,8 @@
 //                        Σ I ≤ 2 r² by Parseval, r the bound on a value's rounding;
 //   series.phase         long-crested: conj X_q at probe p over probe 0's is e^(i k(ω) ê·Δx)
 //                        exactly, k of the case's depth — a deep-water k in finite depth is named.
-// Checks whose law the case's scheme does not give yet are skipped, saying so.
+// Checks whose law the case's scheme does not give yet are skipped, saying so; a record that is
+// not whole repeat periods of uniform lines is refused (InvalidInput), not passed unjudged.
 #include <vector>
 
 #include "swell/reference/probe_sea.hpp"

@@ -34,7 +34,6 @@ enum class SkipReason {
   ambiguous_phase,       // one frame at t ≠ 0 cannot tell h̃0(k) from conj h̃0(−k)
   no_field,              // none of the fields the check judges was given
   no_wave_motion,        // every energetic wave has ω = 0: no period, no motion to measure
-  record_not_periodic,   // probes: the record is not a whole number of the lines' repeat period
   scheme_not_judged,     // probes: the declared synthesis scheme's law is not one swell judges yet
 };
 
