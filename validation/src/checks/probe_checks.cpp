@@ -123,6 +123,37 @@ std::string energy_factor_meaning(double ratio, double low, double high) {
   return best ? std::string(" — ") + best : "";
 }
 
+// How the measured-to-expected ratio of the line bins scales with the expected power: the
+// least-squares slope of log(I/E) on log(E) over the bins within 10⁻⁶ of the largest (E[log Exp(1)] is a constant, so Rayleigh ratios
+// give it unbiased). 1 where the amplitudes are ∝ S Δω instead of √(2 S Δω): a missing √.
+double ratio_slope(const std::vector<double>& expected, const std::vector<double>& measured) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, largest = 0;
+  int n = 0;
+  for (double e : expected) largest = std::max(largest, e);
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    // The bins holding 10⁻⁶ of the largest line's power and more: in the far tails the measured
+    // power is the stored values' rounding, which no slope of the engine's law describes.
+    if (!(expected[i] >= 1e-6 * largest && measured[i] > 0)) continue;
+    const double x = std::log(expected[i]), y = std::log(measured[i] / expected[i]);
+    sx += x, sy += y, sxx += x * x, sxy += x * y, ++n;
+  }
+  if (n < 8) return NAN;
+  const double spread = sxx - sx * sx / n;
+  return spread > 0 ? (sxy - sx * sy / n) / spread : NAN;
+}
+
+// A failed spectrum check's explanation in the engine's terms.
+std::string spectrum_diagnosis(const std::vector<double>& expected, const std::vector<double>& measured,
+                               const std::string& otherwise) {
+  const double slope = ratio_slope(expected, measured);
+  if (std::abs(slope - 1) < 0.1) {
+    return fmt::format("the periodogram over S Δω grows as S Δω itself (slope {:.3f} in log–log): amplitudes ∝ S Δω "
+                       "instead of √(2 S Δω) — a missing √",
+                       slope);
+  }
+  return otherwise;
+}
+
 bool exact_scheme(const ProbeCase& c) {
   return c.synthesis.amplitudes == ProbeAmplitudes::deterministic &&
          c.synthesis.directions != ProbeDirections::double_summation;
@@ -139,11 +170,13 @@ void spectrum_and_energy(const ProbeCase& c, const LineBins& lines, const std::v
   if (exact_scheme(c)) {
     double worst = 0, worst_relative = 0, worst_omega = 0, energy_error = 0, energy_bound = 0, energy_ratio = 1;
     std::size_t worst_probe = 0;
+    std::vector<double> measured_powers;  // probe 0's, for the diagnosis
     for (std::size_t p = 0; p < probes; ++p) {
       double measured_energy = 0, expected_energy = 0, bound_energy = 0;
       for (std::size_t i = 0; i < lines.bins.size(); ++i) {
         const std::size_t q = lines.bins[i];
         const double measured = spectra[p].periodogram(q, n), expected = lines.expected[i];
+        if (p == 0) measured_powers.push_back(measured);
         // The reference's S(ω) and the sum: a few ulps of the bin's energy.
         const double bound = periodogram_error_bound(spectra[p].x[q], spectra[p].rounding) + 1e-12 * expected;
         const double ratio = std::abs(measured - expected) / bound;
@@ -165,8 +198,10 @@ void spectrum_and_energy(const ProbeCase& c, const LineBins& lines, const std::v
         worst <= 1 ? fmt::format("every line's periodogram is S(ω) Δω to its rounding ({} lines × {} probes)",
                                  lines.bins.size(), probes)
                    : fmt::format("{}: at ω = {:.4g} rad/s the periodogram is S Δω × {:.6g} ({:.3g}× the "
-                                 "rounding bound) — the amplitudes are not √(2 S Δω)",
-                                 probe_name(worst_probe, c), worst_omega, 1 + worst_relative, worst)));
+                                 "rounding bound) — {}",
+                                 probe_name(worst_probe, c), worst_omega, 1 + worst_relative, worst,
+                                 spectrum_diagnosis(lines.expected, measured_powers,
+                                                    "the amplitudes are not √(2 S Δω)"))));
     report.results.push_back(exact_check(
         "series.energy", subject, energy_error, 1, energy_error <= 1,
         "|Σ I_q − Σ S Δω| ≤ the summed rounding bounds, every probe",
@@ -180,9 +215,10 @@ void spectrum_and_energy(const ProbeCase& c, const LineBins& lines, const std::v
   // Rayleigh: u_q = I_q/(S Δω) independent Exp(1) over the bins, at each probe.
   double spectrum_p = 1, energy_p = 1, worst_ratio = 1, worst_energy_ratio = 1, energy_low = 1, energy_high = 1;
   std::size_t spectrum_probe = 0, energy_probe = 0;
+  std::vector<double> judged_expected, judged_measured;  // the worst probe's, for the diagnosis
   for (std::size_t p = 0; p < probes; ++p) {
     std::vector<ocean_analysis::NormalizedOrdinate> ordinates;
-    std::vector<double> weights;
+    std::vector<double> weights, measured_powers;
     double measured_energy = 0;
     for (std::size_t i = 0; i < lines.bins.size(); ++i) {
       const std::size_t q = lines.bins[i];
@@ -192,11 +228,15 @@ void spectrum_and_energy(const ProbeCase& c, const LineBins& lines, const std::v
       const double measured = spectra[p].periodogram(q, n);
       ordinates.push_back({lines.omega[i], measured / expected});
       weights.push_back(expected);
+      measured_powers.push_back(measured);
       measured_energy += measured;
     }
     if (ordinates.empty()) continue;
     const auto shape = ocean_analysis::ring_shape(ordinates);
-    if (shape.p <= spectrum_p) spectrum_p = shape.p, spectrum_probe = p, worst_ratio = shape.worst_ratio;
+    if (shape.p <= spectrum_p) {
+      spectrum_p = shape.p, spectrum_probe = p, worst_ratio = shape.worst_ratio;
+      judged_expected = weights, judged_measured = measured_powers;
+    }
     const stats::WeightedExponentialSum law(weights);
     const double p_energy = law.two_sided_p(measured_energy);
     if (p_energy <= energy_p) {
@@ -216,7 +256,10 @@ void spectrum_and_energy(const ProbeCase& c, const LineBins& lines, const std::v
                   "Bonferroni over {} probes)", alpha, probes),
       fmt::format("{}: worst ring of bins at {:.3f} × S Δω (p = {:.2g}){}", probe_name(spectrum_probe, c),
                   worst_ratio, spectrum_p,
-                  spectrum_combined < alpha ? " — the periodogram does not follow S(ω) with Rayleigh amplitudes" : "")));
+                  spectrum_combined < alpha
+                      ? " — " + spectrum_diagnosis(judged_expected, judged_measured,
+                                                   "the periodogram does not follow S(ω) with Rayleigh amplitudes")
+                      : "")));
   report.results.push_back(statistical_check(
       "series.energy", subject, worst_energy_ratio, 1, energy_combined, alpha,
       fmt::format("p ≥ α = {:.0e} (Σ of S Δω Exp(1) over the lines, saddlepoint law; Bonferroni over {} "
@@ -281,6 +324,7 @@ void phase(const ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpe
   const double g = c.sea.gravity;
   double worst = 0, worst_error = 0, worst_omega = 0, deep_worst = 0, reversed_worst = 0;
   std::size_t worst_probe = 1, judged = 0;
+  std::vector<double> in_phase(spectra.size(), 0.0);  // per probe: the largest |measured phase| / bound
   for (std::size_t p = 1; p < spectra.size(); ++p) {
     const double dx = c.layout.positions[p][0] - c.layout.positions[0][0];
     const double dy = c.layout.positions[p][1] - c.layout.positions[0][1];
@@ -303,6 +347,7 @@ void phase(const ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpe
         worst = std::abs(error) / bound, worst_error = error, worst_omega = lines.omega[i], worst_probe = p;
       }
       deep_worst = std::max(deep_worst, std::abs(deep) / bound);
+      in_phase[p] = std::max(in_phase[p], std::abs(measured) / bound);
       reversed_worst = std::max(reversed_worst, std::abs(reversed) / bound);
     }
   }
@@ -319,7 +364,12 @@ void phase(const ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpe
   } else {
     reason = fmt::format("{}: at ω = {:.4g} rad/s the phase from probe 0 is off by {:.3g} rad", probe_name(worst_probe, c),
                          worst_omega, worst_error);
-    if (deep_worst <= 1 && std::isfinite(c.sea.depth)) {
+    const bool same_series = in_phase[worst_probe] <= 1 && judged > 0;
+    if (same_series) {
+      reason += fmt::format(" — probe {} moves in phase with probe 0 at every frequency, as if both stood at one "
+                            "point: a probe clamped to the domain's edge, or two probes read from one grid node",
+                            worst_probe);
+    } else if (deep_worst <= 1 && std::isfinite(c.sea.depth)) {
       reason += fmt::format(" — the phases follow deep-water k = ω²/g where the case's depth is {:g} m "
                             "(a deep-water dispersion in finite depth)", c.sea.depth);
     } else if (reversed_worst <= 1) {

@@ -13,6 +13,7 @@
 
 #include "cli_support.hpp"
 #include "swell/validation/io/case_file.hpp"
+#include "swell/impls/probe_synthesis.hpp"
 #include "swell/validation/io/probe_series.hpp"
 
 namespace {
@@ -99,6 +100,36 @@ TEST_F(ProbeCli, ADeepWaterDispersionAndAScaledAmplitudeAreNamed) {
   EXPECT_EQ(scaled.exit_code, 1) << scaled.output;
   EXPECT_TRUE(contains(scaled.output, "FAIL  series.energy")) << scaled.output;
   EXPECT_TRUE(contains(scaled.output, "× 4π²")) << scaled.output;
+}
+
+// Two engine bugs on a right case: amplitudes ∝ S Δω (a = 2 S Δω, the √ of √(2 S Δω) missing) —
+// named by the spectrum check's slope; and probe 1 repeating probe 0's series (a probe clamped to
+// the domain's edge) — named by the phase check. For each amplitude law the gate judges.
+TEST_F(ProbeCli, AMissingSquareRootAndAClampedProbeAreNamed) {
+  for (const char* amplitudes : {"deterministic", "rayleigh"}) {
+    SCOPED_TRACE(amplitudes);
+    const std::string scheme = std::string("amplitudes = \"") + amplitudes + "\"\ndirections = \"long_crested\"\n";
+    write("case.toml", probes_case(scheme));
+    ASSERT_EQ(swell("synth --case " + path("case.toml") + " --out " + path(amplitudes)).exit_code, 0);
+    const auto c = swell::validation::read_case_file(dir_ / amplitudes / "case.toml");
+    const auto probe_case = c.probe_case();
+    auto lines = swell::reference::probe_wave_lines(probe_case, c.ocean.seed);
+    for (auto& line : lines) line.amplitude = line.amplitude * line.amplitude;  // √(2 S Δω) → 2 S Δω
+    const auto buggy = swell::impls::synthesize_probe_series(probe_case, lines);
+    swell::validation::write_probe_series_csv(dir_ / amplitudes / "elevation.csv", probe_case.layout, buggy,
+                                              c.probes->input.probes);
+    const auto root = swell("gate --case " + path(std::string(amplitudes) + "/case.toml"));
+    EXPECT_EQ(root.exit_code, 1) << root.output;
+    EXPECT_TRUE(contains(root.output, "a missing √")) << root.output;
+
+    auto series = swell::impls::synthesize_probe_series(probe_case, swell::reference::probe_wave_lines(probe_case, c.ocean.seed));
+    series[1] = series[0];
+    swell::validation::write_probe_series_csv(dir_ / amplitudes / "elevation.csv", probe_case.layout, series,
+                                              c.probes->input.probes);
+    const auto clamped = swell("gate --case " + path(std::string(amplitudes) + "/case.toml"));
+    EXPECT_EQ(clamped.exit_code, 1) << clamped.output;
+    EXPECT_TRUE(contains(clamped.output, "probe 1 moves in phase with probe 0")) << clamped.output;
+  }
 }
 
 // An OpenFAST SeaState .out table: preamble, names, units, whitespace-separated rows printed
