@@ -142,9 +142,30 @@ double ratio_slope(const std::vector<double>& expected, const std::vector<double
   return spread > 0 ? (sxy - sx * sy / n) / spread : NAN;
 }
 
+// Whether the measured power sits on every r-th line only (r = 2 … 8), the others empty: the
+// engine's lines are r Δω apart — its series repeats after repeat_period/r. Returns r, or 0.
+int shorter_repeat(const std::vector<double>& measured) {
+  double total = 0;
+  for (double m : measured) total += m;
+  if (!(total > 0)) return 0;
+  for (int r = 2; r <= 8; ++r) {
+    for (int offset = 0; offset < r; ++offset) {
+      double on = 0;
+      for (std::size_t i = std::size_t(offset); i < measured.size(); i += std::size_t(r)) on += measured[i];
+      if (on >= (1 - 1e-6) * total) return r;
+    }
+  }
+  return 0;
+}
+
 // A failed spectrum check's explanation in the engine's terms.
 std::string spectrum_diagnosis(const std::vector<double>& expected, const std::vector<double>& measured,
                                const std::string& otherwise) {
+  if (const int r = shorter_repeat(measured); r > 0) {
+    return fmt::format("only one line in {} of Δω = 2π/repeat_period carries energy: the series repeats "
+                       "after repeat_period/{}, sooner than declared",
+                       r, r);
+  }
   const double slope = ratio_slope(expected, measured);
   if (std::abs(slope - 1) < 0.1) {
     return fmt::format("the periodogram over S Δω grows as S Δω itself (slope {:.3f} in log–log): amplitudes ∝ S Δω "
@@ -411,10 +432,15 @@ ProbeCheckReport run_probe_checks(const ProbeCase& c, const std::vector<std::vec
                           "law (Welch estimates) is not one swell judges yet; swell judges records of "
                           "whole repeat periods of uniform lines",
                           to_string(c.synthesis.frequencies))
-            : fmt::format("the record ({:g} s = samples × dt) is not a whole number of repeat periods "
-                          "({:g} s): the lines do not fall on its bins; swell judges records of whole "
-                          "repeat periods (give samples = a multiple of repeat_period/dt)",
-                          c.layout.duration(), c.synthesis.repeat_period));
+            : c.layout.duration() < c.synthesis.repeat_period
+                  ? fmt::format("the record ({:g} s = samples × dt) is shorter than the declared repeat period "
+                                "({:g} s): its bins are wider than the lines' spacing 2π/repeat_period, which "
+                                "it cannot resolve; record at least one whole repeat period",
+                                c.layout.duration(), c.synthesis.repeat_period)
+                  : fmt::format("the record ({:g} s = samples × dt) is not a whole number of repeat periods "
+                                "({:g} s): the lines do not fall on its bins; swell judges records of whole "
+                                "repeat periods (give samples = a multiple of repeat_period/dt)",
+                                c.layout.duration(), c.synthesis.repeat_period));
   }
   std::vector<ProbeSpectrum> spectra;
   for (std::size_t p = 0; p < elevation.size(); ++p) spectra.push_back(probe_spectrum(elevation[p], rounding[p]));

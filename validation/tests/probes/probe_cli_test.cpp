@@ -132,6 +132,28 @@ TEST_F(ProbeCli, AMissingSquareRootAndAClampedProbeAreNamed) {
   }
 }
 
+// Series that repeat after half the declared period (lines 2 Δω apart) are named so; a record
+// shorter than the declared repeat period is refused saying so.
+TEST_F(ProbeCli, ASeriesRepeatingSoonerThanDeclaredIsNamed) {
+  const std::string scheme = "amplitudes = \"deterministic\"\ndirections = \"long_crested\"\n";
+  std::string half = probes_case(scheme);
+  half.replace(half.find("repeat_period = 1024.0"), 22, "repeat_period = 512.0");
+  write("half.toml", half);
+  ASSERT_EQ(swell("synth --case " + path("half.toml") + " --out " + path("half")).exit_code, 0);
+  write("half/declared.toml", probes_case(scheme) + "[input]\nfiles = \"elevation.csv\"\ntime_column = \"time\"\n"
+                                                    "probes = [\"probe0\", \"probe1\", \"probe2\"]\n");
+  const auto gate = swell("gate --case " + path("half/declared.toml"));
+  EXPECT_EQ(gate.exit_code, 1) << gate.output;
+  EXPECT_TRUE(contains(gate.output, "the series repeats after repeat_period/2")) << gate.output;
+  std::string longer = probes_case(scheme);
+  longer.replace(longer.find("repeat_period = 1024.0"), 22, "repeat_period = 2048.0");
+  write("half/longer.toml", longer + "[input]\nfiles = \"elevation.csv\"\ntime_column = \"time\"\n"
+                                     "probes = [\"probe0\", \"probe1\", \"probe2\"]\n");
+  const auto refused = swell("gate --case " + path("half/longer.toml"));
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "shorter than the declared repeat period")) << refused.output;
+}
+
 // An OpenFAST SeaState .out table: preamble, names, units, whitespace-separated rows printed
 // to ES-style precision; the gate reads it, its rounding bounding the exact checks.
 TEST_F(ProbeCli, AnOpenFastOutTableIsRead) {
