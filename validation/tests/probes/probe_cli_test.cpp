@@ -154,6 +154,37 @@ TEST_F(ProbeCli, ASeriesRepeatingSoonerThanDeclaredIsNamed) {
   EXPECT_TRUE(contains(refused.output, "shorter than the declared repeat period")) << refused.output;
 }
 
+// An engine that interpolates its probes from a wave grid of 4 m spacing (OpenFAST's SeaState
+// does): probes off the nodes lose variance, more at the shorter waves. The exact check of one
+// amplitude per line names it, for each scheme with one direction per frequency.
+TEST_F(ProbeCli, ProbesInterpolatedFromAGridAreNamed) {
+  for (const char* directions : {"long_crested", "single_per_frequency"}) {
+    SCOPED_TRACE(directions);
+    const std::string scheme = std::string("amplitudes = \"rayleigh\"\ndirections = \"") + directions + "\"\n";
+    write("case.toml", probes_case(scheme, "model = \"cos2s\"\ns = 10.0\nwind_dir_deg = 30.0\n"));
+    ASSERT_EQ(swell("synth --case " + path("case.toml") + " --out " + path(directions)).exit_code, 0);
+    const auto c = swell::validation::read_case_file(dir_ / directions / "case.toml");
+    const auto probe_case = c.probe_case();
+    const auto lines = swell::reference::probe_wave_lines(probe_case, c.ocean.seed);
+    // The probes (0, 0), (10, 0), (0, 10): probe 0 on a node, the others halfway between nodes
+    // 8 and 12 m, bilinear.
+    auto nodes = probe_case;
+    nodes.layout.positions = {{0.0, 0.0}, {8.0, 0.0}, {12.0, 0.0}, {0.0, 8.0}, {0.0, 12.0}};
+    const auto at_nodes = swell::impls::synthesize_probe_series(nodes, lines);
+    std::vector<std::vector<double>> series = {at_nodes[0], at_nodes[1], at_nodes[3]};
+    for (std::size_t n = 0; n < series[1].size(); ++n) {
+      series[1][n] = 0.5 * (at_nodes[1][n] + at_nodes[2][n]);
+      series[2][n] = 0.5 * (at_nodes[3][n] + at_nodes[4][n]);
+    }
+    swell::validation::write_probe_series_csv(dir_ / directions / "elevation.csv", probe_case.layout, series,
+                                              c.probes->input.probes);
+    const auto gate = swell("gate --case " + path(std::string(directions) + "/case.toml"));
+    EXPECT_EQ(gate.exit_code, 1) << gate.output;
+    EXPECT_TRUE(contains(gate.output, "FAIL  series.same_amplitude")) << gate.output;
+    EXPECT_TRUE(contains(gate.output, "values interpolated between grid nodes")) << gate.output;
+  }
+}
+
 // An OpenFAST SeaState .out table: preamble, names, units, whitespace-separated rows printed
 // to ES-style precision; the gate reads it, its rounding bounding the exact checks.
 TEST_F(ProbeCli, AnOpenFastOutTableIsRead) {
