@@ -135,6 +135,14 @@ struct TableReader {
   }
 };
 
+// A series per probe, empty, its rounding 0: what a table's rows fill.
+ProbeSeries no_samples_yet(const reference::ProbeLayout& layout) {
+  ProbeSeries series;
+  series.elevation.resize(layout.positions.size());
+  series.rounding.assign(layout.positions.size(), 0.0);
+  return series;
+}
+
 void require_probe_names(const ProbeInput& input, std::size_t probes, const std::string& where) {
   if (input.probes.size() != probes) {
     throw InvalidInput(fmt::format("{}: [input] probes must name one column per probe ({} positions; "
@@ -156,9 +164,7 @@ ProbeSeries read_csv(const fs::path& path, const ProbeInput& input, const refere
   if (trim(line).empty()) throw InvalidInput(path.string() + ": empty (a header line of column names first)");
   const auto names = split_commas(line);
   const Columns columns = find_columns(names, input, fmt::format("{}:{}", path.string(), number));
-  ProbeSeries series;
-  series.elevation.resize(layout.positions.size());
-  series.rounding.assign(layout.positions.size(), 0.0);
+  ProbeSeries series = no_samples_yet(layout);
   TableReader reader{path, columns, layout, series};
   while (std::getline(in, line)) {
     ++number;
@@ -226,9 +232,7 @@ ProbeSeries read_openfast(const fs::path& path, const ProbeInput& input, const r
                                      input.probes[p], units[c]));
     }
   }
-  ProbeSeries series;
-  series.elevation.resize(layout.positions.size());
-  series.rounding.assign(layout.positions.size(), 0.0);
+  ProbeSeries series = no_samples_yet(layout);
   TableReader reader{path, columns, layout, series};
   while (std::getline(in, line)) {
     ++number;
