@@ -125,10 +125,14 @@ void print_moments(const reference::SeaState& state, const std::string& indent,
 // the sum, whose moments are the sea's.
 int run_case_spectrum(const SpectrumOptions& o) {
   const auto case_file = validation::read_case_file(o.case_path);
-  const auto& ocean = case_file.ocean;
-  const auto components = ocean.components();
+  // A probes case's sea as its lines see it (a long-crested one needs no spreading model).
+  const auto ocean = case_file.is_probe_case() ? case_file.probe_case().synthesized_sea() : case_file.ocean;
+  const std::string description =
+      case_file.is_probe_case() ? case_file.probe_case().describe() : ocean.describe();
   std::vector<reference::DirectionalSpectrumPtr> parts;
-  for (const auto& c : components) parts.push_back(ocean.component_spectrum(c));
+  for (const auto& c : ocean.components()) parts.push_back(ocean.component_spectrum(c));
+  // The components as declared, for the listing.
+  const auto components = case_file.ocean.components();
   const auto sea = ocean.sea_spectrum();
   const auto& total = sea->omnidirectional();
   const double omega_p = total.peak_omega();
@@ -160,7 +164,7 @@ int run_case_spectrum(const SpectrumOptions& o) {
                       {"moments", moments_json(states[i])}});
     }
     nlohmann::json document = {{"case", o.case_path},
-                               {"description", ocean.describe()},
+                               {"description", description},
                                {"omega", omegas},
                                {"components", list},
                                {"S", values.back()},
@@ -171,7 +175,7 @@ int run_case_spectrum(const SpectrumOptions& o) {
     if (o.json == "-") return 0;
   }
 
-  fmt::print("case: {}\n{}\n\n", o.case_path, ocean.describe());
+  fmt::print("case: {}\n{}\n\n", o.case_path, description);
   for (std::size_t i = 0; i < parts.size(); ++i) {
     const auto& c = components[i];
     fmt::print("component {}: {} ({}){}\n", i, c.spectrum.model,

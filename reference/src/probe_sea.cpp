@@ -140,6 +140,7 @@ OceanCase long_crested_sea(const ProbeCase& c) {
 }  // namespace
 
 DirectionalSpectrumPtr ProbeCase::spectrum() const { return long_crested_sea(*this).sea_spectrum(); }
+OceanCase ProbeCase::synthesized_sea() const { return long_crested_sea(*this); }
 
 void ProbeCase::validate() const {
   long_crested_sea(*this).validate_sea();

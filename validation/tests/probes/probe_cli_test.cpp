@@ -11,6 +11,8 @@
 #include <string>
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_support.hpp"
 #include "swell/validation/io/case_file.hpp"
 #include "swell/impls/probe_synthesis.hpp"
@@ -258,6 +260,12 @@ TEST_F(ProbeCli, BadProbeCasesExitTwoNamingTheProblem) {
     EXPECT_EQ(gate.exit_code, 2) << gate.output;
     EXPECT_TRUE(contains(gate.output, part)) << part << "\n" << gate.output;
   }
+  // swell spectrum takes a probes case, a long-crested one without a spreading model too: its
+  // m0 is the JONSWAP's Hs²/16.
+  write("long.toml", probes_case(""));
+  const auto spectrum = swell("spectrum --case " + path("long.toml") + " --json -");
+  ASSERT_EQ(spectrum.exit_code, 0) << spectrum.output;
+  EXPECT_NEAR(nlohmann::json::parse(spectrum.output)["moments"]["m0"].get<double>(), 9.0 / 16, 1e-8);
   // swell fit takes grids, and names what this case is.
   write("good.toml", probes_case(""));
   const auto fit = swell("fit --case " + path("good.toml") + " --input " + path("frame_%04d.exr"));

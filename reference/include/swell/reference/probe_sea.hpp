@@ -86,7 +86,10 @@ struct ProbeCase {
   // Ψ of the sea as the lines see it. A long-crested sea needs no spreading model (its lines all
   // travel toward the sea's mean direction): a component without one is given cos-2s s = 1 here,
   // which leaves its S(ω) and mean direction — all a long-crested sea uses — unchanged.
-  DirectionalSpectrumPtr spectrum() const;  // "jonswap hs=3 tp=10 gamma=3.3 …, 9 probes, 43200 samples at 0.25 s"
+  DirectionalSpectrumPtr spectrum() const;
+  // The sea as spectrum() sees it: `sea`, with cos-2s s = 1 for a long-crested sea's components
+  // that give no spreading model.
+  OceanCase synthesized_sea() const;  // "jonswap hs=3 tp=10 gamma=3.3 …, 9 probes, 43200 samples at 0.25 s"
 };
 
 // One wave line: η += amplitude · cos(k (cos θ x + sin θ y) − ω t + phase).
