@@ -1,0 +1,72 @@
+#pragma once
+// What the series checks of a probes case share (docs/probes.md): each probe's one-sided
+// spectrum, the bins the declared lines fall on, and the diagnoses in the engine's terms. One
+// check per file beside this one; checks/probe_checks.cpp runs them.
+#include <complex>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "swell/reference/probe_sea.hpp"
+#include "swell/validation/checks/probe_checks.hpp"
+
+namespace swell::validation::probe_analysis {
+
+using Complex = std::complex<double>;
+
+// What the scheme and the record make of the bins: line i of Δω = 2π/repeat_period on bin
+// q = m i when the record holds m whole repeat periods.
+struct LineBins {
+  bool periodic = false;
+  std::size_t whole_periods = 0;  // m
+  double step = 0;                // Δω, rad/s
+  std::vector<std::size_t> bins;  // q of every line in the band below the Nyquist bin
+  std::vector<double> expected;   // S(ω_q) Δω, m², per line bin
+  std::vector<double> omega;      // ω_q, rad/s
+};
+LineBins line_bins(const reference::ProbeCase& c);
+
+// One probe's spectrum X_q = (1/N) Σ η_n e^(−2πi q n/N), q = 0 … N/2, and the rounding it
+// carries: r bounds each X's error (its stored rounding plus the transform's, 8 u log2 N of its
+// largest value).
+struct ProbeSpectrum {
+  std::vector<Complex> x;
+  double rounding = 0;
+  // I_q = 2|X_q|² (|X_q|² at q = 0 and the Nyquist bin), E I_q = S(ω_q) Δω.
+  double periodogram(std::size_t q, std::size_t n) const {
+    const double two_sided = std::norm(x[q]);
+    return q == 0 || 2 * q == n ? two_sided : 2 * two_sided;
+  }
+};
+ProbeSpectrum probe_spectrum(const std::vector<double>& series, double stored_rounding);
+
+// |I − I_true| for a bin whose X carries an error of at most r.
+double periodogram_error_bound(const Complex& x, double r);
+
+std::string probe_name(std::size_t p, const reference::ProbeCase& c);  // "probe 2 at (10, 0) m"
+
+// " — × 4π²: amplitudes × 2π" for the convention factor nearest `ratio` in log within the
+// range [low, high] the sampling allows, "" when none lies there.
+std::string energy_factor_meaning(double ratio, double low, double high);
+
+// A failed spectrum check's explanation in the engine's terms: a series repeating sooner than
+// declared, a missing √, or `otherwise`.
+std::string spectrum_diagnosis(const std::vector<double>& expected, const std::vector<double>& measured,
+                               const std::string& otherwise);
+
+// Deterministic amplitudes with one line per frequency: the periodogram is S Δω exactly.
+bool exact_scheme(const reference::ProbeCase& c);
+// Deterministic amplitudes with several directions per frequency: equal phasors per line.
+bool equal_phasor_scheme(const reference::ProbeCase& c);
+
+// The checks, one per file.
+void line_spectrum_and_energy(const reference::ProbeCase& c, const LineBins& lines,
+                              const std::vector<ProbeSpectrum>& spectra, double alpha, ProbeCheckReport& report);
+void stray_energy(const reference::ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpectrum>& spectra,
+                  ProbeCheckReport& report);
+void same_amplitude(const reference::ProbeCase& c, const LineBins& lines,
+                    const std::vector<ProbeSpectrum>& spectra, ProbeCheckReport& report);
+void phase(const reference::ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpectrum>& spectra,
+           ProbeCheckReport& report);
+
+}  // namespace swell::validation::probe_analysis
