@@ -15,8 +15,8 @@ using reference::ProbeFrequencies;
 
 int probe_statistical_check_count(const ProbeCase& c) {
   if (!line_bins(c).periodic) return 0;
-  if (c.synthesis.amplitudes == ProbeAmplitudes::rayleigh) return 2;
-  return equal_phasor_scheme(c) ? 1 : 0;
+  if (c.synthesis.amplitudes == ProbeAmplitudes::rayleigh) return 3;  // spectrum, energy, moments
+  return equal_phasor_scheme(c) ? 2 : 0;                                // spectrum, moments
 }
 
 ProbeCheckReport run_probe_checks(const ProbeCase& c, const std::vector<std::vector<double>>& elevation,
@@ -53,6 +53,7 @@ ProbeCheckReport run_probe_checks(const ProbeCase& c, const std::vector<std::vec
   std::vector<ProbeSpectrum> spectra;
   for (std::size_t p = 0; p < elevation.size(); ++p) spectra.push_back(probe_spectrum(elevation[p], rounding[p]));
   line_spectrum_and_energy(c, lines, spectra, alpha, report);
+  series_moments_of_lines(c, lines, spectra, alpha, report);
   stray_energy(c, lines, spectra, report);
   if (c.synthesis.directions != ProbeDirections::double_summation && spectra.size() >= 2) {
     same_amplitude(c, lines, spectra, report);

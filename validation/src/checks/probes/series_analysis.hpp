@@ -54,6 +54,11 @@ std::string energy_factor_meaning(double ratio, double low, double high);
 std::string spectrum_diagnosis(const std::vector<double>& expected, const std::vector<double>& measured,
                                const std::string& otherwise);
 
+// "Tm01 × c and Tm02 × c with the energy × r: … frequencies rescaled …" when the measured
+// powers hold the expected energy at frequencies scaled alike; "" otherwise.
+std::string frequency_rescale_diagnosis(const std::vector<double>& omega, const std::vector<double>& expected,
+                                        const std::vector<double>& measured);
+
 // Deterministic amplitudes with one line per frequency: the periodogram is S Δω exactly.
 bool exact_scheme(const reference::ProbeCase& c);
 // Deterministic amplitudes with several directions per frequency: equal phasors per line.
@@ -62,6 +67,9 @@ bool equal_phasor_scheme(const reference::ProbeCase& c);
 // The checks, one per file.
 void line_spectrum_and_energy(const reference::ProbeCase& c, const LineBins& lines,
                               const std::vector<ProbeSpectrum>& spectra, double alpha, ProbeCheckReport& report);
+// series.moments: Hs, Tm01 and Tm02 of each probe's line powers against the lines' own.
+void series_moments_of_lines(const reference::ProbeCase& c, const LineBins& lines,
+                             const std::vector<ProbeSpectrum>& spectra, double alpha, ProbeCheckReport& report);
 void stray_energy(const reference::ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpectrum>& spectra,
                   ProbeCheckReport& report);
 void same_amplitude(const reference::ProbeCase& c, const LineBins& lines,
