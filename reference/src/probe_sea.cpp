@@ -226,22 +226,27 @@ std::string ProbeCase::describe() const {
 
 std::vector<FrequencyLine> probe_frequency_lines(const ProbeCase& c) {
   const auto& s = c.synthesis;
+  const auto sea = c.spectrum();
+  const FrequencySpectrum& spectrum = sea->omnidirectional();
   std::vector<FrequencyLine> out;
   if (s.frequencies == ProbeFrequencies::uniform) {
     const double step = 2 * kPi / s.repeat_period;
     const long first = std::max(1L, long(std::ceil(s.omega_low / step)));
     const long last = long(std::floor(s.omega_high / step));
-    for (long i = first; i <= last; ++i) out.push_back({double(i) * step, step});
+    for (long i = first; i <= last; ++i) out.push_back({double(i) * step, step, spectrum(double(i) * step) * step});
   } else if (s.frequencies == ProbeFrequencies::equal_energy) {
-    const auto cumulative = cumulative_spectrum(c.spectrum()->omnidirectional(), s.omega_low, s.omega_high);
+    const auto cumulative = cumulative_spectrum(spectrum, s.omega_low, s.omega_high);
     const int n = s.n_frequencies;
     for (int i = 0; i < n; ++i) {
       const double lo = cumulative.quantile(double(i) / n), hi = cumulative.quantile(double(i + 1) / n);
-      out.push_back({cumulative.quantile((i + 0.5) / n), hi - lo});
+      out.push_back({cumulative.quantile((i + 0.5) / n), hi - lo, cumulative.total() / n});
     }
   } else {
     const double width = (s.omega_high - s.omega_low) / s.n_frequencies;
-    for (int i = 0; i < s.n_frequencies; ++i) out.push_back({s.omega_low + (i + 0.5) * width, width});
+    for (int i = 0; i < s.n_frequencies; ++i) {
+      const double omega = s.omega_low + (i + 0.5) * width;
+      out.push_back({omega, width, spectrum(omega) * width});
+    }
   }
   return out;
 }
@@ -273,9 +278,6 @@ std::vector<WaveLine> probe_wave_lines(const ProbeCase& c, std::uint64_t seed) {
   const Dispersion dispersion = c.sea.dispersion();
   const double mean = sea->mean_direction();
   const double from = mean - kPi;  // D's cells centred on the mean direction's circle
-  const double band_energy = s.frequencies == ProbeFrequencies::equal_energy
-                                 ? cumulative_spectrum(spectrum, s.omega_low, s.omega_high).total()
-                                 : 0;
   std::vector<WaveLine> out;
   const auto frequencies = probe_frequency_lines(c);
   const int directions = s.directions == ProbeDirections::double_summation ? s.n_directions : 1;
@@ -289,9 +291,8 @@ std::vector<WaveLine> probe_wave_lines(const ProbeCase& c, std::uint64_t seed) {
     }
     // Each line's energy S Δω (equal_energy: the band's m0 shared out), split equally over the
     // frequency's directions.
-    const double energy = s.frequencies == ProbeFrequencies::equal_energy
-                              ? band_energy / s.n_frequencies
-                              : spectrum(omega) * width;
+    const double energy =
+        s.frequencies == ProbeFrequencies::random ? spectrum(omega) * width : frequencies[i].variance;
     const double k = dispersion.wavenumber(omega);
     std::vector<double> density;
     if (s.directions != ProbeDirections::long_crested) {

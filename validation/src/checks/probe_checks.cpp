@@ -14,7 +14,7 @@ using reference::ProbeDirections;
 using reference::ProbeFrequencies;
 
 int probe_statistical_check_count(const ProbeCase& c) {
-  if (!line_bins(c).periodic) return 0;
+  if (!line_bins(c).periodic) return 2;  // Welch: spectrum, energy
   if (c.synthesis.amplitudes == ProbeAmplitudes::rayleigh) return 3;  // spectrum, energy, moments
   return equal_phasor_scheme(c) ? 2 : 0;                                // spectrum, moments
 }
@@ -29,29 +29,24 @@ ProbeCheckReport run_probe_checks(const ProbeCase& c, const std::vector<std::vec
       throw InvalidInput(fmt::format("a series of {} samples where the case has {}", series.size(), c.layout.samples));
     }
   }
+  // The stored values' rounding and the engine's arithmetic in double.
+  std::vector<double> allowed(rounding);
+  for (std::size_t p = 0; p < allowed.size(); ++p) allowed[p] += engine_arithmetic_allowance(c, p);
   ProbeCheckReport report;
+  const std::size_t period = repeat_period_samples(c);
+  if (period > 0 && c.layout.samples > period) repeat_period(c, elevation, allowed, report);
   const LineBins lines = line_bins(c);
   if (!lines.periodic) {
-    // Refused rather than passed with every check skipped: a gate that judges nothing must not
-    // say PASS.
-    throw InvalidInput(
-        c.synthesis.frequencies != ProbeFrequencies::uniform
-            ? fmt::format("frequencies = \"{}\": the lines do not fall on the record's bins, and their "
-                          "law (Welch estimates) is not one swell judges yet; swell judges records of "
-                          "whole repeat periods of uniform lines",
-                          to_string(c.synthesis.frequencies))
-            : c.layout.duration() < c.synthesis.repeat_period
-                  ? fmt::format("the record ({:g} s = samples × dt) is shorter than the declared repeat period "
-                                "({:g} s): its bins are wider than the lines' spacing 2π/repeat_period, which "
-                                "it cannot resolve; record at least one whole repeat period",
-                                c.layout.duration(), c.synthesis.repeat_period)
-                  : fmt::format("the record ({:g} s = samples × dt) is not a whole number of repeat periods "
-                                "({:g} s): the lines do not fall on its bins; swell judges records of whole "
-                                "repeat periods (give samples = a multiple of repeat_period/dt)",
-                                c.layout.duration(), c.synthesis.repeat_period));
+    welch_spectrum_and_energy(c, elevation, allowed, alpha, report);
+    report.skipped.push_back({"series.stray_energy", SkipReason::scheme_not_judged,
+                              "the lines do not fall on the record's bins: no bin is free of them"});
+    report.skipped.push_back({"series.phase", SkipReason::scheme_not_judged,
+                              "the lines do not fall on the record's bins: phases between probes are judged on "
+                              "records of whole repeat periods"});
+    return report;
   }
   std::vector<ProbeSpectrum> spectra;
-  for (std::size_t p = 0; p < elevation.size(); ++p) spectra.push_back(probe_spectrum(elevation[p], rounding[p]));
+  for (std::size_t p = 0; p < elevation.size(); ++p) spectra.push_back(probe_spectrum(elevation[p], allowed[p]));
   line_spectrum_and_energy(c, lines, spectra, alpha, report);
   series_moments_of_lines(c, lines, spectra, alpha, report);
   stray_energy(c, lines, spectra, report);

@@ -261,6 +261,7 @@ ProbeSeries read_npy_series(const fs::path& path, const reference::ProbeLayout& 
   }
   std::vector<double> values;
   double unit = 0;
+  bool float_valued = false;
   if (array.dtype == NpyArray::Dtype::f4) {
     const auto floats = array.values<float>();
     values.assign(floats.begin(), floats.end());
@@ -268,6 +269,12 @@ ProbeSeries read_npy_series(const fs::path& path, const reference::ProbeLayout& 
   } else if (array.dtype == NpyArray::Dtype::f8) {
     values = array.values<double>();
     unit = std::numeric_limits<double>::epsilon() / 2;
+    // Doubles that are all floats were computed (or stored) in single precision: their rounding
+    // is a float's, which the exact checks must allow.
+    if (std::all_of(values.begin(), values.end(), [](double v) { return double(float(v)) == v; })) {
+      unit = std::numeric_limits<float>::epsilon() / 2;
+      float_valued = true;
+    }
   } else {
     throw InvalidInput(fmt::format("{}: dtype '{}'; probe series are float32 or float64", path.string(),
                                    to_descr(array.dtype)));
@@ -284,6 +291,10 @@ ProbeSeries read_npy_series(const fs::path& path, const reference::ProbeLayout& 
       series.elevation[p][n] = v;
       series.rounding[p] = std::max(series.rounding[p], unit * std::abs(v));
     }
+  }
+  if (float_valued) {
+    series.notes.push_back(fmt::format("{}: float64 values that are all float32 values: judged with a float's "
+                                       "rounding", path.string()));
   }
   return series;
 }

@@ -111,6 +111,8 @@ std::vector<WaveLine> probe_wave_lines(const ProbeCase& probe_case, std::uint64_
 // any random placement: uniform's i Δω, equal_energy's quantiles, random's bin centres.
 struct FrequencyLine {
   double omega = 0, band_width = 0;
+  double variance = 0;  // m², E a²/2 of the frequency's lines together: S(ω) band_width, or equal_energy's
+                        // m0 over the band / n_frequencies (random: at the bin's centre)
 };
 std::vector<FrequencyLine> probe_frequency_lines(const ProbeCase& probe_case);
 

@@ -104,6 +104,23 @@ double periodogram_error_bound(const Complex& x, double r) {
   return 4 * (std::abs(x) + r) * r + 2 * r * r;
 }
 
+double engine_arithmetic_allowance(const ProbeCase& c, std::size_t p) {
+  const auto lines = reference::probe_frequency_lines(c);
+  const int directions = c.synthesis.directions == ProbeDirections::double_summation ? c.synthesis.n_directions : 1;
+  const double amplitude_factor = c.synthesis.amplitudes == ProbeAmplitudes::rayleigh ? 3.0 : 1.0;
+  const double latest = std::max(std::abs(c.layout.t0), std::abs(c.layout.time(c.layout.samples - 1)));
+  const double distance = std::hypot(c.layout.positions[p][0], c.layout.positions[p][1]);
+  const double terms = double(lines.size()) * directions;
+  const auto dispersion = c.sea.dispersion();
+  double sum = 0;
+  for (const auto& line : lines) {
+    const double amplitudes = amplitude_factor * std::sqrt(2 * line.variance * directions);
+    const double argument = line.omega * latest + dispersion.wavenumber(line.omega) * distance + 2 * kPi;
+    sum += amplitudes * (argument + terms);
+  }
+  return 0x1p-53 * sum;
+}
+
 std::string probe_name(std::size_t p, const ProbeCase& c) {
   return fmt::format("probe {} at ({:g}, {:g}) m", p, c.layout.positions[p][0], c.layout.positions[p][1]);
 }

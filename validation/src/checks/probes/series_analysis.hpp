@@ -43,6 +43,13 @@ ProbeSpectrum probe_spectrum(const std::vector<double>& series, double stored_ro
 // |I − I_true| for a bin whose X carries an error of at most r.
 double periodogram_error_bound(const Complex& x, double r);
 
+// The error a double-precision engine's own arithmetic may put on each value at probe `p`, m: each
+// line's cosine carries its argument's rounding, u (|ω| t + k |x_p| + 2π), and the sum of all n
+// lines n u of their amplitudes (a worst-case bound: Σ over frequencies of Σ_j |a_ij| ≤
+// √(2 v n_dir), three times that for Rayleigh amplitudes). An independent engine summing its lines
+// in double stays within it; the exact checks allow it beside the stored values' rounding.
+double engine_arithmetic_allowance(const reference::ProbeCase& c, std::size_t p);
+
 std::string probe_name(std::size_t p, const reference::ProbeCase& c);  // "probe 2 at (10, 0) m"
 
 // " — × 4π²: amplitudes × 2π" for the convention factor nearest `ratio` in log within the
@@ -70,6 +77,16 @@ void line_spectrum_and_energy(const reference::ProbeCase& c, const LineBins& lin
 // series.moments: Hs, Tm01 and Tm02 of each probe's line powers against the lines' own.
 void series_moments_of_lines(const reference::ProbeCase& c, const LineBins& lines,
                              const std::vector<ProbeSpectrum>& spectra, double alpha, ProbeCheckReport& report);
+// series.spectrum and series.energy of records that are not whole repeat periods of uniform
+// lines (equal-energy or random frequencies, or another record length): Welch estimates and the
+// mean square against their exact moments over the declared lines.
+void welch_spectrum_and_energy(const reference::ProbeCase& c, const std::vector<std::vector<double>>& elevation,
+                               const std::vector<double>& rounding, double alpha, ProbeCheckReport& report);
+// repeat_period/dt when it is a whole number of samples M ≥ 2 of uniform lines, else 0.
+std::size_t repeat_period_samples(const reference::ProbeCase& c);
+// series.repeat_period: a record longer than M samples repeats after M, exactly.
+void repeat_period(const reference::ProbeCase& c, const std::vector<std::vector<double>>& elevation,
+                   const std::vector<double>& rounding, ProbeCheckReport& report);
 void stray_energy(const reference::ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpectrum>& spectra,
                   ProbeCheckReport& report);
 void same_amplitude(const reference::ProbeCase& c, const LineBins& lines,
