@@ -6,6 +6,7 @@
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <numbers>
 #include <span>
 #include <string>
@@ -30,6 +31,30 @@ constexpr double kPi = std::numbers::pi;
 // with any seed shares no numbers with its null.
 constexpr std::uint64_t kNullSeed = 0x5e11'0000'6d0eULL;
 constexpr std::uint32_t kNullStream = 7;
+
+// Indices of the 2¹² lattice phases, five from each SplitMix64 output (Steele, Lea & Flood
+// 2014: a 64-bit generator whose outputs pass BigCrush), one stream per pair of replicas.
+class LatticePhases {
+ public:
+  static constexpr std::size_t kPoints = 4096;
+  explicit LatticePhases(std::uint64_t seed) : state_(seed) {}
+  std::size_t next() {
+    if (left_ == 0) bits_ = split_mix(), left_ = 5;
+    const std::size_t index = std::size_t(bits_ & (kPoints - 1));
+    bits_ >>= 12, --left_;
+    return index;
+  }
+
+ private:
+  std::uint64_t split_mix() {
+    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
+  std::uint64_t state_, bits_ = 0;
+  int left_ = 0;
+};
 
 // Sample skewness and excess kurtosis about the sample mean.
 struct Moments {
@@ -108,18 +133,6 @@ MomentLaw skewed_law(const std::vector<double>& replicas) {
 
 bool moment_null_simulated(const ProbeCase& c) { return impls::probe_series_is_periodic(c); }
 
-int moment_null_replicas(const ProbeCase& c) {
-  if (c.synthesis.amplitudes == ProbeAmplitudes::rayleigh || c.synthesis.directions != ProbeDirections::double_summation ||
-      c.synthesis.n_directions == 1) {
-    return kMomentNullReplicas;
-  }
-  // n uniform phases per line and replica: fewer replicas, within the draws of 400 replicas of
-  // 3 × 10⁴ lines (about 0.5 s), never below 200.
-  const double draws = double(reference::probe_frequency_lines(c).size()) * c.synthesis.n_directions;
-  const int affordable = int(1.2e7 / std::max(draws, 1.0)) / 2 * 2;
-  return std::clamp(affordable, 200, kMomentNullReplicas);
-}
-
 MomentNull simulate_moment_null(const ProbeCase& c, int replicas) {
   std::size_t period = 0;
   if (!impls::probe_series_is_periodic(c, &period)) {
@@ -169,7 +182,13 @@ MomentNull simulate_moment_null(const ProbeCase& c, int replicas) {
     m.add(std::span<const double>(series.data(), rest), mean);
     return Moments{m.skewness(), m.excess_kurtosis()};
   };
+  // Deterministic amplitudes' phases on a lattice of 2¹² points of the circle: E e^(imψ) = 0
+  // for every m that is not a multiple of 4096, as for continuous uniform phases, so every
+  // moment of B of order below 4096 is theirs — and a phase costs a table read, not a sine.
+  std::vector<Complex> lattice(LatticePhases::kPoints);
+  for (std::size_t k = 0; k < lattice.size(); ++k) lattice[k] = std::polar(1.0, 2 * kPi * double(k) / double(lattice.size()));
   for (int r = 0; r < replicas; r += 2) {
+    LatticePhases phases(kNullSeed + std::uint64_t(r));
     std::fill(coefficients.begin(), coefficients.end(), Complex(0));
     for (std::size_t i = 0; i < lines.size(); ++i) {
       Complex b[2];
@@ -179,11 +198,7 @@ MomentNull simulate_moment_null(const ProbeCase& c, int replicas) {
           b[s] = lines[i].scale * Complex(xi.xi1, xi.xi2);
         } else {
           Complex sum = 0;
-          for (int j = 0; j < phasors; j += 2) {
-            const auto u = reference::wave_uniforms(kNullSeed, int(i), (r + s) * phasors + j, kNullStream);
-            sum += std::polar(1.0, 2 * kPi * u.u1);
-            if (j + 1 < phasors) sum += std::polar(1.0, 2 * kPi * u.u2);
-          }
+          for (int j = 0; j < phasors; ++j) sum += lattice[phases.next()];
           b[s] = lines[i].scale * sum;
         }
       }
@@ -232,7 +247,7 @@ void series_moments(const ProbeCase& c, const std::vector<std::vector<double>>& 
     report.skipped.push_back({"series.kurtosis", SkipReason::scheme_not_judged, why});
     return;
   }
-  const MomentNull null = simulate_moment_null(c, moment_null_replicas(c));
+  const MomentNull null = simulate_moment_null(c, kMomentNullReplicas);
   const MomentLaw skewness_law = symmetric_law(null.skewness), kurtosis_law = skewed_law(null.kurtosis);
   const std::size_t probes = elevation.size();
   std::vector<Moments> measured(probes);
@@ -243,12 +258,12 @@ void series_moments(const ProbeCase& c, const std::vector<std::vector<double>>& 
     // A constant series has no moments: NaN, which fails (a p-value of NaN fails its check).
     const double ps = skewness_law.two_sided_p(measured[p].skewness);
     const double pk = kurtosis_law.two_sided_p(measured[p].kurtosis);
-    if (!(ps >= skew_p)) skew_p = ps, skew_probe = p;
-    if (!(pk >= kurt_p)) kurt_p = pk, kurt_probe = p;
+    if (!std::isnan(skew_p) && !(ps >= skew_p)) skew_p = ps, skew_probe = p;
+    if (!std::isnan(kurt_p) && !(pk >= kurt_p)) kurt_p = pk, kurt_probe = p;
   }
   // Bonferroni over the probes: they see one sea and are correlated, so × P is conservative.
-  const double skew_combined = std::min(1.0, skew_p * double(probes));
-  const double kurt_combined = std::min(1.0, kurt_p * double(probes));
+  const auto bonferroni = [&](double p) { return std::isnan(p) ? p : std::min(1.0, p * double(probes)); };
+  const double skew_combined = bonferroni(skew_p), kurt_combined = bonferroni(kurt_p);
   const double g1 = measured[skew_probe].skewness, g2 = measured[kurt_probe].kurtosis;
   std::string skew_reason = fmt::format("{}: g1 = {:+.4f} against {:+.4f} ± {:.4f} (p = {:.2g})",
                                         probe_label(skew_probe, c), g1, skewness_law.mean, skewness_law.sd, skew_p);

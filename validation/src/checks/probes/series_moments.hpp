@@ -14,8 +14,9 @@
 // Each frequency's lines meet at a point as one complex amplitude B_i = Σ_j a_ij e^(iφ_ij):
 // Rayleigh amplitudes make it √(S Δω)(ξ1 + i ξ2) whatever the directions; deterministic ones
 // √(2 S Δω/n) Σ_j e^(iψ_j) over the frequency's n directions (n = 1 unless double_summation).
-// The replicas draw B_i directly (Philox, a fixed key: the same series get the same verdict on
-// every run) and sum the lines by one FFT of length M = repeat_period/dt — two replicas per
+// The replicas draw B_i directly from fixed keys (Philox normals for Rayleigh; phases on a
+// 2¹²-point lattice of the circle, SplitMix64, for deterministic amplitudes), so the same
+// series get the same verdict on every run, and sum the lines by one FFT of length M = repeat_period/dt — two replicas per
 // complex transform, as η1 + iη2 — so only uniform frequencies whose repeat period is a whole
 // number of samples are simulated; other schemes are skipped, saying so.
 #include <cstddef>
@@ -32,11 +33,8 @@ struct MomentNull {
   std::vector<double> kurtosis;  // g2 of each replica
 };
 
-// The replicas series_moments judges by: 400, or for deterministic amplitudes with n > 1
-// directions per frequency (n phases per line and replica) as many as about 1.2e7 phases allow,
-// at least 200.
+// The replicas series_moments judges by.
 inline constexpr int kMomentNullReplicas = 400;
-int moment_null_replicas(const reference::ProbeCase& probe_case);
 
 // `replicas` (even, ≥ 2) replicas of the declared model at one point. InvalidInput when the
 // scheme is not one it simulates (uniform frequencies, repeat_period a whole number of dt).
