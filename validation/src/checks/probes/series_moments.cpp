@@ -109,7 +109,7 @@ MomentLaw symmetric_law(const std::vector<double>& replicas) {
 }
 
 // g2's law: a Pearson type III of the replicas' mean, sd and skewness (g2's law is skewed to
-// the right, more so as the band narrows: 0.5–1.5 over the calibration's cases).
+// the right, more so as the record shortens: 1.1–1.4 at 1024 samples, 0.2–0.5 at 43 200).
 MomentLaw skewed_law(const std::vector<double>& replicas) {
   const double r = double(replicas.size());
   double mean = 0;

@@ -15,10 +15,19 @@
 // Rayleigh amplitudes make it √(S Δω)(ξ1 + i ξ2) whatever the directions; deterministic ones
 // √(2 S Δω/n) Σ_j e^(iψ_j) over the frequency's n directions (n = 1 unless double_summation).
 // The replicas draw B_i directly from fixed keys (Philox normals for Rayleigh; phases on a
-// 2¹²-point lattice of the circle, SplitMix64, for deterministic amplitudes), so the same
-// series get the same verdict on every run, and sum the lines by one FFT of length M = repeat_period/dt — two replicas per
-// complex transform, as η1 + iη2 — so only uniform frequencies whose repeat period is a whole
-// number of samples are simulated; other schemes are skipped, saying so.
+// 2¹²-point lattice of the circle, SplitMix64, for deterministic amplitudes), so the same series
+// get the same verdict on every run, and sum the lines by one FFT of length M = repeat_period/dt,
+// two replicas per complex transform (as η1 + iη2). Only uniform frequencies whose repeat period
+// is a whole number of samples are simulated; other schemes are skipped, saying so.
+//
+//   series.skewness  g1's law is symmetric (η → −η leaves the model's law as it was): each
+//                    replica counts with its mirror, g1/sd ~ Student t on R dof;
+//   series.kurtosis  g2's law is skewed to the right (1.1–1.4 at 1024 samples of a Tp = 10 s
+//                    sea at dt 0.5 s, 0.2–0.5 at 43 200 at dt 0.25 s): a Pearson type III of the
+//                    replicas' mean, sd (× √(1 + 1/R), a prediction) and skewness.
+// Each per probe, Bonferroni over the probes (they see one sea and are correlated: × P is
+// conservative). R = 400: 0.34 s (Rayleigh) and 0.12 s (deterministic, 15 directions) for
+// three hours at 4 Hz on nine probes, on one core.
 #include <cstddef>
 #include <vector>
 
