@@ -4,6 +4,9 @@
 //   probe_gate/<probes>/<samples>/real_time   run_gate(case.toml): reading the CSV series and
 //                                             judging them (every series check), wall clock
 //   probe_synth/<probes>/<samples>            probe_wave_lines + synthesize_probe_series
+//   probe_moments/<probes>/<samples>          series.skewness and series.kurtosis alone (their
+//                                             simulated null and the probes' moments), on
+//                                             series held in memory
 //
 // The case is the OpenFAST sea: JONSWAP Hs 3 m, Tp 10 s, γ 3.3 in 30 m of water, cos-2s
 // s = 10 toward 30°, Rayleigh amplitudes, 15 directions per frequency, uniform lines over
@@ -19,6 +22,7 @@
 #include <map>
 #include <string>
 
+#include "checks/probes/series_moments.hpp"
 #include "swell/impls/probe_synthesis.hpp"
 #include "swell/validation/gate/gate.hpp"
 #include "swell/validation/io/case_file.hpp"
@@ -107,6 +111,21 @@ void probe_synth(benchmark::State& state) {
   }
 }
 BENCHMARK(probe_synth)->Args({3, 4096})->Args({9, 43200})->UseRealTime()->Unit(benchmark::kMillisecond);
+
+void probe_moments(benchmark::State& state) {
+  const int probes = int(state.range(0)), samples = int(state.range(1));
+  const auto c = probe_case_file(probes, samples);
+  const auto probe_case = c.probe_case();
+  const auto series = swell::impls::synthesize_probe_series(
+      probe_case, swell::reference::probe_wave_lines(probe_case, c.ocean.seed), 2);
+  for (auto _ : state) {
+    swell::validation::ProbeCheckReport report;
+    swell::validation::series_moments(probe_case, series, 0.01, report);
+    if (!swell::validation::all_passed(report.results)) state.SkipWithError("the right series failed its moments");
+    benchmark::DoNotOptimize(report.results.size());
+  }
+}
+BENCHMARK(probe_moments)->Args({3, 4096})->Args({9, 43200})->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
