@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "checks/probes/series_analysis.hpp"
+#include "checks/probes/skewness_kurtosis.hpp"
 #include "swell/reference/errors.hpp"
 
 namespace swell::validation {
@@ -14,9 +15,10 @@ using reference::ProbeDirections;
 using reference::ProbeFrequencies;
 
 int probe_statistical_check_count(const ProbeCase& c) {
-  if (!line_bins(c).periodic) return 2;  // Welch: spectrum, energy
-  if (c.synthesis.amplitudes == ProbeAmplitudes::rayleigh) return 3;  // spectrum, energy, moments
-  return equal_phasor_scheme(c) ? 2 : 0;                                // spectrum, moments
+  const int simulated = moment_null_simulated(c) ? 2 : 0;  // skewness, kurtosis
+  if (!line_bins(c).periodic) return 2 + simulated;         // Welch: spectrum, energy
+  if (c.synthesis.amplitudes == ProbeAmplitudes::rayleigh) return 3 + simulated;  // spectrum, energy, moments
+  return (equal_phasor_scheme(c) ? 2 : 0) + simulated;                             // spectrum, moments
 }
 
 ProbeCheckReport run_probe_checks(const ProbeCase& c, const std::vector<std::vector<double>>& elevation,
@@ -38,6 +40,7 @@ ProbeCheckReport run_probe_checks(const ProbeCase& c, const std::vector<std::vec
   const LineBins lines = line_bins(c);
   if (!lines.periodic) {
     welch_spectrum_and_energy(c, elevation, allowed, alpha, report);
+    skewness_and_kurtosis(c, elevation, alpha, report);
     report.skipped.push_back({"series.stray_energy", SkipReason::scheme_not_judged,
                               "the lines do not fall on the record's bins: no bin is free of them"});
     report.skipped.push_back({"series.phase", SkipReason::scheme_not_judged,
@@ -48,7 +51,8 @@ ProbeCheckReport run_probe_checks(const ProbeCase& c, const std::vector<std::vec
   std::vector<ProbeSpectrum> spectra;
   for (std::size_t p = 0; p < elevation.size(); ++p) spectra.push_back(probe_spectrum(elevation[p], allowed[p]));
   line_spectrum_and_energy(c, lines, spectra, alpha, report);
-  series_moments_of_lines(c, lines, spectra, alpha, report);
+  spectral_moments(c, lines, spectra, alpha, report);
+  skewness_and_kurtosis(c, elevation, alpha, report);
   stray_energy(c, lines, spectra, report);
   if (c.synthesis.directions != ProbeDirections::double_summation && spectra.size() >= 2) {
     same_amplitude(c, lines, spectra, report);

@@ -1,4 +1,4 @@
-// series.skewness and series.kurtosis (checks/probes/series_moments.hpp).
+// series.skewness and series.kurtosis (checks/probes/skewness_kurtosis.hpp).
 #include <gtest/gtest.h>
 
 #include <boost/math/distributions/binomial.hpp>
@@ -13,7 +13,7 @@
 #include <numeric>
 #include <string>
 
-#include "checks/probes/series_moments.hpp"
+#include "checks/probes/skewness_kurtosis.hpp"
 #include "swell/impls/probe_synthesis.hpp"
 #include "swell/reference/errors.hpp"
 
@@ -140,7 +140,7 @@ TEST(ProbeMoments, TheSimulatedSpreadIsLomnickis) {
 
 sv::ProbeCheckReport judge(const sr::ProbeCase& c, const std::vector<std::vector<double>>& series, double alpha) {
   sv::ProbeCheckReport report;
-  sv::series_moments(c, series, alpha, report);
+  sv::skewness_and_kurtosis(c, series, alpha, report);
   return report;
 }
 
@@ -202,11 +202,11 @@ TEST(ProbeMoments, BadInputIsRefusedAndOtherSchemesAreSkipped) {
   const auto c = jonswap(3.3, 0.5, 1024, 512, 4);
   const auto right = swell::impls::synthesize_probe_series(c, sr::probe_wave_lines(c, 1));
   sv::ProbeCheckReport report;
-  EXPECT_THROW(sv::series_moments(c, {right[0], right[1]}, 0.01, report), swell::InvalidInput);
+  EXPECT_THROW(sv::skewness_and_kurtosis(c, {right[0], right[1]}, 0.01, report), swell::InvalidInput);
   auto short_series = right;
   short_series[2].pop_back();
-  EXPECT_THROW(sv::series_moments(c, short_series, 0.01, report), swell::InvalidInput);
-  EXPECT_THROW(sv::series_moments(c, right, 0, report), swell::InvalidInput);
+  EXPECT_THROW(sv::skewness_and_kurtosis(c, short_series, 0.01, report), swell::InvalidInput);
+  EXPECT_THROW(sv::skewness_and_kurtosis(c, right, 0, report), swell::InvalidInput);
   EXPECT_THROW(sv::simulate_moment_null(c, 3), swell::InvalidInput);
   // A constant series has no moments: it fails rather than passing.
   auto constant = right;

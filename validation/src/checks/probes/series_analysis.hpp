@@ -75,7 +75,7 @@ bool equal_phasor_scheme(const reference::ProbeCase& c);
 void line_spectrum_and_energy(const reference::ProbeCase& c, const LineBins& lines,
                               const std::vector<ProbeSpectrum>& spectra, double alpha, ProbeCheckReport& report);
 // series.moments: Hs, Tm01 and Tm02 of each probe's line powers against the lines' own.
-void series_moments_of_lines(const reference::ProbeCase& c, const LineBins& lines,
+void spectral_moments(const reference::ProbeCase& c, const LineBins& lines,
                              const std::vector<ProbeSpectrum>& spectra, double alpha, ProbeCheckReport& report);
 // series.spectrum and series.energy of records that are not whole repeat periods of uniform
 // lines (equal-energy or random frequencies, or another record length): Welch estimates and the

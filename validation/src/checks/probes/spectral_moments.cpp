@@ -79,7 +79,7 @@ std::string frequency_rescale_diagnosis(const std::vector<double>& omega, const 
                      scale01, scale02, energy);
 }
 
-void series_moments_of_lines(const ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpectrum>& spectra,
+void spectral_moments(const ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpectrum>& spectra,
                              double alpha, ProbeCheckReport& report) {
   const std::size_t n = c.layout.samples, probes = spectra.size();
   const Moments expected = moments_of(lines.omega, lines.expected);

@@ -1,4 +1,4 @@
-#include "checks/probes/series_moments.hpp"
+#include "checks/probes/skewness_kurtosis.hpp"
 
 #include <fmt/format.h>
 
@@ -229,7 +229,7 @@ std::string probe_label(std::size_t p, const ProbeCase& c) {
 }
 }  // namespace
 
-void series_moments(const ProbeCase& c, const std::vector<std::vector<double>>& elevation, double alpha,
+void skewness_and_kurtosis(const ProbeCase& c, const std::vector<std::vector<double>>& elevation, double alpha,
                     ProbeCheckReport& report) {
   if (elevation.size() != c.layout.positions.size() || elevation.empty()) {
     throw InvalidInput(fmt::format("{} series for {} probes", elevation.size(), c.layout.positions.size()));

@@ -42,7 +42,7 @@ struct MomentNull {
   std::vector<double> kurtosis;  // g2 of each replica
 };
 
-// The replicas series_moments judges by.
+// The replicas skewness_and_kurtosis judges by.
 inline constexpr int kMomentNullReplicas = 400;
 
 // `replicas` (even, ≥ 2) replicas of the declared model at one point. InvalidInput when the
@@ -54,8 +54,8 @@ bool moment_null_simulated(const reference::ProbeCase& probe_case);
 
 // Appends series.skewness and series.kurtosis (two statistical checks, each at `alpha`) to
 // `report`, or two Skipped when the scheme is not simulated. `elevation[p][n]`: probe p's series.
-void series_moments(const reference::ProbeCase& probe_case,
-                    const std::vector<std::vector<double>>& elevation,  // [probe][sample]
-                    double alpha, ProbeCheckReport& report);
+void skewness_and_kurtosis(const reference::ProbeCase& probe_case,
+                           const std::vector<std::vector<double>>& elevation,  // [probe][sample]
+                           double alpha, ProbeCheckReport& report);
 
 }  // namespace swell::validation
