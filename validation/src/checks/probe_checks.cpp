@@ -18,7 +18,7 @@ int probe_statistical_check_count(const ProbeCase& c) {
   const int simulated = moment_null_simulated(c) ? 2 : 0;  // skewness, kurtosis
   if (!line_bins(c).periodic) return 2 + simulated;         // Welch: spectrum, energy
   if (c.synthesis.amplitudes == ProbeAmplitudes::rayleigh) return 3 + simulated;  // spectrum, energy, moments
-  return (equal_phasor_scheme(c) ? 2 : 0) + simulated;                             // spectrum, moments
+  return (equal_phasor_scheme(c) ? 3 : 0) + simulated;                   // spectrum, energy, moments
 }
 
 ProbeCheckReport run_probe_checks(const ProbeCase& c, const std::vector<std::vector<double>>& elevation,

@@ -71,9 +71,39 @@ void equal_phasor_spectrum(const ProbeCase& c, const LineBins& lines, const std:
                                                                "the periodogram does not follow S(ω) with "
                                                                "deterministic amplitudes")
                                   : "")));
-  report.skipped.push_back({"series.energy", SkipReason::scheme_not_judged,
-                            "deterministic amplitudes with several directions per frequency: the law of the "
-                            "lines' summed power is not judged yet (series.spectrum judges each line's)"});
+  // series.energy: Σ e_q u_q, mean Σ e_q, variance (1 − 1/n) Σ e_q², by the Gamma of those two
+  // moments as the rings.
+  double energy_p = 1, energy_ratio = 1, energy_sd = 0;
+  std::size_t energy_probe = 0;
+  for (std::size_t p = 0; p < probes; ++p) {
+    double mean = 0, variance = 0, measured = 0;
+    for (std::size_t i = 0; i < lines.bins.size(); ++i) {
+      const double e = lines.expected[i];
+      if (!(e > 1e6 * 2 * spectra[p].rounding * spectra[p].rounding)) continue;
+      mean += e, variance += scale * e * e, measured += spectra[p].periodogram(lines.bins[i], n);
+    }
+    if (!(mean > 0)) continue;
+    const double shape = mean * mean / variance, theta = variance / mean;
+    const double p_value = std::min(1.0, 2 * std::min(stats::gamma_lower_p(shape, measured / theta),
+                                                      stats::gamma_upper_p(shape, measured / theta)));
+    if (p == 0 || p_value < energy_p) {
+      energy_p = p_value, energy_probe = p, energy_ratio = measured / mean, energy_sd = std::sqrt(variance) / mean;
+    }
+  }
+  const double energy_combined = std::min(1.0, energy_p * double(probes));
+  report.results.push_back(statistical_check(
+      "series.energy", c.describe(), energy_ratio, 1, energy_combined, alpha,
+      fmt::format("p ≥ α = {:.0e} (Σ of S Δω u over the lines, u = |Σ e^(iψ)|²/{}: the Gamma of its mean and "
+                  "variance; Bonferroni over {} probes)",
+                  alpha, c.synthesis.n_directions, probes),
+      fmt::format("{}: the lines carry {:.4g} × Σ S Δω (p = {:.2g}){}", probe_name(energy_probe, c), energy_ratio,
+                  energy_p,
+                  energy_combined < alpha
+                      ? fmt::format(" — energy off by {:.3g} (Hs by {:.3g}){}", energy_ratio, std::sqrt(energy_ratio),
+                                    energy_factor_meaning(energy_ratio, energy_ratio / (1 + 6 * energy_sd),
+                                                          energy_ratio / std::max(1e-3, 1 - 6 * energy_sd),
+                                                          directions_per_frequency(c)))
+                      : "")));
 }
 
 bool judged_scheme(const ProbeCase& c) {
@@ -126,7 +156,7 @@ void judged_spectrum_and_energy(const ProbeCase& c, const LineBins& lines, const
             ? fmt::format("the lines carry Σ S Δω to {:.2g} relative", energy_bound)
             : fmt::format("the lines carry {:.6g} × Σ S Δω (Hs × {:.4g}){}", energy_ratio, std::sqrt(energy_ratio),
                           energy_factor_meaning(energy_ratio, energy_ratio * (1 - 3 * energy_bound - 1e-9),
-                                                energy_ratio * (1 + 3 * energy_bound + 1e-9)))));
+                                                energy_ratio * (1 + 3 * energy_bound + 1e-9), directions_per_frequency(c)))));
     return;
   }
   // Rayleigh: u_q = I_q/(S Δω) independent Exp(1) over the bins, at each probe.
@@ -185,7 +215,7 @@ void judged_spectrum_and_energy(const ProbeCase& c, const LineBins& lines, const
                   worst_energy_ratio, energy_p,
                   energy_combined < alpha ? fmt::format(" — energy off by {:.3g} (Hs by {:.3g}){}", worst_energy_ratio,
                                                         std::sqrt(worst_energy_ratio),
-                                                        energy_factor_meaning(worst_energy_ratio, energy_low, energy_high))
+                                                        energy_factor_meaning(worst_energy_ratio, energy_low, energy_high, directions_per_frequency(c)))
                                           : "")));
 }
 

@@ -104,6 +104,10 @@ double periodogram_error_bound(const Complex& x, double r) {
   return 4 * (std::abs(x) + r) * r + 2 * r * r;
 }
 
+int directions_per_frequency(const ProbeCase& c) {
+  return c.synthesis.directions == ProbeDirections::double_summation ? c.synthesis.n_directions : 1;
+}
+
 double engine_arithmetic_allowance(const ProbeCase& c, std::size_t p) {
   const auto lines = reference::probe_frequency_lines(c);
   const int directions = c.synthesis.directions == ProbeDirections::double_summation ? c.synthesis.n_directions : 1;
@@ -126,10 +130,12 @@ std::string probe_name(std::size_t p, const ProbeCase& c) {
 }
 
 // The factor an engine's series carry when it slips on a convention, named where the
-// measured energy ratio's range [low, high] holds it (the nearest in log).
-std::string energy_factor_meaning(double ratio, double low, double high) {
+// measured energy ratio's range [low, high] holds it (the nearest in log). With n directions per
+// frequency in equal-probability sectors (weights 1/n), variance weights √(1/n) instead of 1/n
+// give × √n, amplitude weights 1/n instead of √(1/n) give × 1/n.
+std::string energy_factor_meaning(double ratio, double low, double high, int directions) {
   const double two_pi = 2 * kPi;
-  const std::pair<double, const char*> factors[] = {
+  std::vector<std::pair<double, std::string>> factors = {
       {two_pi * two_pi, "× 4π²: amplitudes × 2π"},
       {1 / (two_pi * two_pi), "× 1/(4π²): amplitudes ÷ 2π"},
       {two_pi, "× 2π: a density in m²/Hz used as m²·s/rad"},
@@ -138,14 +144,23 @@ std::string energy_factor_meaning(double ratio, double low, double high) {
       {2.0, "× 2: a one-sided density counted twice, or a = √(4 S Δω)"},
       {16.0, "× 16: Hs² where m0 = Hs²/16 belongs"},
   };
-  const char* best = nullptr;
+  if (directions > 1) {
+    factors.push_back({std::sqrt(double(directions)),
+                       fmt::format("× √{} = √n_directions: spreading weights √D per direction instead of D (the "
+                                   "directional energy is not conserved)",
+                                   directions)});
+    factors.push_back({1.0 / directions, fmt::format("× 1/{} = 1/n_directions: amplitudes weighted by D instead of "
+                                                     "√D per direction (the directional energy is not conserved)",
+                                                     directions)});
+  }
+  const std::string* best = nullptr;
   double nearest = INFINITY;
   for (const auto& [factor, meaning] : factors) {
     if (factor < low || factor > high) continue;
     const double distance = std::abs(std::log(ratio / factor));
-    if (distance < nearest) nearest = distance, best = meaning;
+    if (distance < nearest) nearest = distance, best = &meaning;
   }
-  return best ? std::string(" — ") + best : "";
+  return best ? " — " + *best : "";
 }
 
 // How the measured-to-expected ratio of the line bins scales with the expected power: the

@@ -53,8 +53,11 @@ double engine_arithmetic_allowance(const reference::ProbeCase& c, std::size_t p)
 std::string probe_name(std::size_t p, const reference::ProbeCase& c);  // "probe 2 at (10, 0) m"
 
 // " — × 4π²: amplitudes × 2π" for the convention factor nearest `ratio` in log within the
-// range [low, high] the sampling allows, "" when none lies there.
-std::string energy_factor_meaning(double ratio, double low, double high);
+// range [low, high] the sampling allows, "" when none lies there; `directions` per frequency
+// (double summation's n) adds the spreading weights' factors √n and 1/n.
+std::string energy_factor_meaning(double ratio, double low, double high, int directions);
+// The lines per frequency of the case's scheme: n_directions for double summation, else 1.
+int directions_per_frequency(const reference::ProbeCase& c);
 
 // A failed spectrum check's explanation in the engine's terms: a series repeating sooner than
 // declared, a missing √, or `otherwise`.

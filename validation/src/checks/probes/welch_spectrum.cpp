@@ -264,9 +264,9 @@ double ring_p(const Ring& ring, double sum) {
 
 // The mean square of the series, M = (1/N) Σ η_n²: E M = Σ_i E v_i and
 //   Var M = Σ_{i≠j} E v_i E v_j |D(ω_i − ω_j)|² + Σ_i ((2 − κ) E v_i² − (E v_i)²),
-// D(ν) = (1/N) Σ_n e^(iν t_n), the Hermitian form's exact variance (the ω_i + ω_j terms, whose
-// D is 10⁻³ and less at the judged frequencies, left out). Random frequencies' cross terms are
-// left out too: one line per bin of width w ≫ 2π/T leaves |D| ≤ 2/(T w).
+// D(ν) = (1/N) Σ_n e^(iν t_n), the Hermitian form's exact variance, plus the sum-frequency
+// terms' (below). Random frequencies' difference terms are left out: one line per bin of width
+// w ≫ 2π/T leaves |D| ≤ 2/(T w).
 struct EnergyLaw {
   double mean = 0, variance = 0;
 };
@@ -295,18 +295,58 @@ EnergyLaw energy_law(const ProbeCase& c) {
     law.variance += (2 - kappa) * second - first * first;
     omega.push_back(f.omega), mean_v.push_back(first);
   }
+  const double dt = c.layout.dt, n = double(c.layout.samples);
+  // |D(ν)| = |sin(N ν dt/2) / (N sin(ν dt/2))|, 1 where ν dt is a multiple of 2π.
+  const auto dirichlet = [&](double nu) {
+    const double half = nu * dt / 2, denominator = n * std::sin(half);
+    return std::abs(denominator) < 1e-9 ? 1.0 : std::abs(std::sin(n * half) / denominator);
+  };
   if (s.frequencies != ProbeFrequencies::random) {
-    const double duration = c.layout.duration(), dt = c.layout.dt;
-    const double n = double(c.layout.samples);
-    // |D(ν)| = |sin(N ν dt/2) / (N sin(ν dt/2))|; pairs within 64 record bins of each other.
-    const double reach = 64 * 2 * kPi / duration;
+    // The difference terms: pairs within 64 record bins of each other (beyond, |D| < 1/(64π)
+    // and falling).
+    const double reach = 64 * 2 * kPi / c.layout.duration();
     for (std::size_t i = 0; i < omega.size(); ++i) {
       for (std::size_t j = i + 1; j < omega.size() && omega[j] - omega[i] <= reach; ++j) {
-        const double half = (omega[j] - omega[i]) * dt / 2;
-        const double d = std::sin(n * half) / (n * std::sin(half));
+        const double d = dirichlet(omega[j] - omega[i]);
         law.variance += 2 * mean_v[i] * mean_v[j] * d * d;
       }
     }
+  }
+  // The sum terms ½ Re Σ c_i c_j D(ω_i + ω_j), zero in the mean, with variance
+  //   (2 − κ)/2 Σ v_i² |D(2ω_i)|² + 2 Σ_{i<j} v_i v_j |D(ω_i + ω_j)|²,
+  // exactly over the lines holding 10⁻³ of the largest line's variance and more, and bounded
+  // for the rest by the largest |D| over their sums' range (an upper bound).
+  double largest = 0, rest = 0, total = 0;
+  for (double v : mean_v) largest = std::max(largest, v), total += v;
+  std::vector<std::size_t> strong;
+  double lowest = INFINITY, highest = 0;
+  for (std::size_t i = 0; i < omega.size(); ++i) {
+    lowest = std::min(lowest, omega[i]), highest = std::max(highest, omega[i]);
+    if (mean_v[i] >= 1e-3 * largest) {
+      strong.push_back(i);
+    } else {
+      rest += mean_v[i];
+    }
+  }
+  for (std::size_t a = 0; a < strong.size(); ++a) {
+    const std::size_t i = strong[a];
+    const double d = dirichlet(2 * omega[i]);
+    law.variance += (2 - kappa) / 2 * mean_v[i] * mean_v[i] * d * d;
+    for (std::size_t b = a + 1; b < strong.size(); ++b) {
+      const std::size_t j = strong[b];
+      const double dij = dirichlet(omega[i] + omega[j]);
+      law.variance += 2 * mean_v[i] * mean_v[j] * dij * dij;
+    }
+  }
+  if (rest > 0) {
+    // max |D| over [2 lowest, 2 highest]: 1 if the range holds a multiple of 2π/dt, else at an end.
+    const double period = 2 * kPi / dt;
+    const bool aliased = std::floor(2 * highest / period) > std::floor(2 * lowest / period) ||
+                         std::fmod(2 * lowest, period) == 0;
+    const double bound = aliased ? 1.0 : std::max(1 / std::abs(n * std::sin(lowest * dt)),
+                                                  1 / std::abs(n * std::sin(highest * dt)));
+    const double d = std::min(1.0, bound);
+    law.variance += (2 * rest * total + rest * rest) * d * d;
   }
   return law;
 }
@@ -433,7 +473,7 @@ void welch_spectrum_and_energy(const ProbeCase& c, const std::vector<std::vector
       fmt::format("{}: the series' mean square is {:.4g} × the lines' Σ v (p = {:.2g}){}", probe_name(worst_probe, c),
                   worst_ratio, worst_p,
                   p_value < alpha ? fmt::format(" — energy off by {:.3g} (Hs by {:.3g}){}", worst_ratio,
-                                                std::sqrt(worst_ratio), energy_factor_meaning(worst_ratio, low, high))
+                                                std::sqrt(worst_ratio), energy_factor_meaning(worst_ratio, low, high, directions_per_frequency(c)))
                                   : "")));
   report.notes.push_back(record_note(c, w));
 }
