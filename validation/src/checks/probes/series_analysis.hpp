@@ -66,7 +66,8 @@ std::string spectrum_diagnosis(const std::vector<double>& expected, const std::v
 
 // "Tm01 × c and Tm02 × c with the energy × r: … frequencies rescaled …" when the measured
 // powers hold the expected energy at frequencies scaled alike; "" otherwise.
-std::string frequency_rescale_diagnosis(const std::vector<double>& omega, const std::vector<double>& expected,
+std::string frequency_rescale_diagnosis(const std::vector<double>& expected_omega, const std::vector<double>& expected,
+                                        const std::vector<double>& measured_omega,
                                         const std::vector<double>& measured);
 
 // Deterministic amplitudes with one line per frequency: the periodogram is S Δω exactly.

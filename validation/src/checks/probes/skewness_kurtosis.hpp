@@ -23,8 +23,10 @@
 //   series.skewness  g1's law is symmetric (η → −η leaves the model's law as it was): each
 //                    replica counts with its mirror, g1/sd ~ Student t on R dof;
 //   series.kurtosis  g2's law is skewed to the right (1.1–1.4 at 1024 samples of a Tp = 10 s
-//                    sea at dt 0.5 s, 0.2–0.5 at 43 200 at dt 0.25 s): a Pearson type III of the
-//                    replicas' mean, sd (× √(1 + 1/R), a prediction) and skewness.
+//                    sea at dt 0.5 s, 0.2–0.5 at 43 200 at dt 0.25 s) with a tail heavier than
+//                    its moments' Pearson III: g2 is judged through y = −1/(3 + g2), by a
+//                    Pearson type III of y's replicas' mean, sd (× √(1 + 1/R), a prediction) and
+//                    skewness (on its short side, past the Pearson III's end, the normal law).
 // Each per probe, Bonferroni over the probes (they see one sea and are correlated: × P is
 // conservative). R = 400: 0.34 s (Rayleigh) and 0.12 s (deterministic, 15 directions) for
 // three hours at 4 Hz on nine probes, on one core.

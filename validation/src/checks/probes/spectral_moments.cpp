@@ -62,9 +62,10 @@ double two_sided(double cdf) { return std::min(1.0, 2 * std::min(cdf, 1 - cdf));
 
 }  // namespace
 
-std::string frequency_rescale_diagnosis(const std::vector<double>& omega, const std::vector<double>& expected,
+std::string frequency_rescale_diagnosis(const std::vector<double>& expected_omega, const std::vector<double>& expected,
+                                        const std::vector<double>& measured_omega,
                                         const std::vector<double>& measured) {
-  const Moments e = moments_of(omega, expected), m = moments_of(omega, measured);
+  const Moments e = moments_of(expected_omega, expected), m = moments_of(measured_omega, measured);
   if (!(e.m0 > 0 && m.m0 > 0 && m.m1 > 0 && m.m2 > 0)) return "";
   const double energy = m.m0 / e.m0, scale01 = m.tm01() / e.tm01(), scale02 = m.tm02() / e.tm02();
   // Stretched alike in both periods (within 5 %), by more than 10 %, with the energy within
@@ -137,7 +138,13 @@ void spectral_moments(const ProbeCase& c, const LineBins& lines, const std::vect
                   probe_name(worst_probe, c), 4 * std::sqrt(m.m0), m.tm01(), m.tm02(), 4 * std::sqrt(expected.m0),
                   expected.tm01(), expected.tm02());
   const double ratio = m.tm01() / expected.tm01();
-  const std::string rescaled = frequency_rescale_diagnosis(worst_omega, worst_expected, worst_powers);
+  // The rescaling is looked for in the whole periodogram: rescaled lines leave the line bins.
+  std::vector<double> all_omega, all_powers;
+  for (std::size_t q = 1; 2 * q < n; ++q) {
+    all_omega.push_back(2 * kPi * double(q) / c.layout.duration());
+    all_powers.push_back(spectra[worst_probe].periodogram(q, n));
+  }
+  const std::string rescaled = frequency_rescale_diagnosis(lines.omega, lines.expected, all_omega, all_powers);
   if (exact) {
     report.results.push_back(exact_check(
         "series.moments", c.describe(), worst, 1, worst <= 1,

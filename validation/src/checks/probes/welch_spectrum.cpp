@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "swell/impls/transform.hpp"
 #include "swell/reference/errors.hpp"
@@ -416,10 +415,6 @@ void welch_spectrum_and_energy(const ProbeCase& c, const std::vector<std::vector
         const double ring_p_value = ring_p(ring, sum);
         p_values.push_back(ring_p_value);
         if (ring_p_value <= probe_worst_p) probe_worst_p = ring_p_value, probe_worst_ratio = sum / ring.mean;
-        if (std::getenv("SWELL_DEBUG_WELCH")) {
-          fmt::print(stderr, "probe {} ring {}–{}: mean {:.6g} sd {:.3g} sum {:.6g} p {:.3g}\n", p, ring.bins.front(),
-                     ring.bins.back(), ring.mean, std::sqrt(ring.variance), sum, ring_p_value);
-        }
       }
       for (int k : bins) measured.push_back(q[std::size_t(k)]);
       const double combined = stats::fisher_combined_p(p_values);
@@ -430,7 +425,7 @@ void welch_spectrum_and_energy(const ProbeCase& c, const std::vector<std::vector
     const double p_value = std::min(1.0, worst_p * double(probes));
     std::string diagnosis;
     if (p_value < alpha) {
-      const std::string rescaled = frequency_rescale_diagnosis(omega, means, judged_measured);
+      const std::string rescaled = frequency_rescale_diagnosis(omega, means, omega, judged_measured);
       diagnosis = " — " + (rescaled.empty() ? spectrum_diagnosis(means, judged_measured,
                                                                  "the Welch estimates do not follow the declared "
                                                                  "lines' S(ω)")
