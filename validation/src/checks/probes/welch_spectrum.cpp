@@ -22,6 +22,9 @@ namespace {
 // Lines farther than this many Welch bins from a bin reach it through the Hann window's side
 // lobes only (|W|² below 10⁻⁵ of its peak): they enter its mean, not its covariances.
 constexpr int kNearBins = 6;
+// The mean counts lines within this many bins exactly and bounds the rest (|W|² there is below
+// 10⁻¹² of its peak).
+constexpr int kMeanBins = 64;
 
 // One declared line as the Welch law sees it: quadrature nodes of its frequency (one for a
 // fixed frequency; a random one's bin split into equal sub-bins, each node weighing 1/J) with
@@ -145,18 +148,38 @@ std::vector<DeclaredLine> declared_lines(const ProbeCase& c, const WelchLayout& 
 class WelchLaw {
  public:
   WelchLaw(const ProbeCase& c, const WelchLayout& w)
-      : layout_(w), response_(w.length, w.dt), kappa_(fourth_moment_deficit(c)), lines_(declared_lines(c, w)) {}
-
-  double mean(int k) const {
-    const double omega_k = layout_.bin_omega(k);
-    double sum = 0;
+      : layout_(w), response_(w.length, w.dt), kappa_(fourth_moment_deficit(c)), lines_(declared_lines(c, w)) {
     for (const auto& line : lines_) {
-      for (const auto& node : line.nodes) {
-        sum += node.variance / 2 / double(line.nodes.size()) *
-               (std::norm(response_(omega_k - node.omega)) + std::norm(response_(omega_k + node.omega)));
+      for (const auto& node : line.nodes) total_half_variance_ += node.variance / 2 / double(line.nodes.size());
+    }
+    // The window's side lobes fall as ν⁻³: their largest |W|² beyond kMeanBins, sampled over
+    // the next two bins, bounds every farther one.
+    for (double x = kMeanBins; x <= kMeanBins + 2; x += 1.0 / 64) {
+      far_response_ = std::max(far_response_, std::norm(response_(x * w.bin_omega(1))));
+    }
+  }
+
+  // E Q_k over the lines within kMeanBins of ±ω_k (the negative frequency's image too), and a
+  // bound on the rest: their variance times the window's largest |W|² that far out.
+  struct Mean {
+    double value = 0, far_bound = 0;
+  };
+  Mean mean(int k) const {
+    const double omega_k = layout_.bin_omega(k), reach = kMeanBins * layout_.bin_omega(1);
+    Mean out;
+    double counted = 0;
+    for (const double centre : {omega_k, -omega_k}) {
+      for (auto line = first_line_above(centre - reach); line != lines_.end() && line->lowest <= centre + reach;
+           ++line) {
+        for (const auto& node : line->nodes) {
+          const double share = node.variance / 2 / double(line->nodes.size());
+          out.value += share * std::norm(response_(centre - node.omega));
+          counted += share;
+        }
       }
     }
-    return sum;
+    out.far_bound = std::max(0.0, 2 * total_half_variance_ - counted) * far_response_;
+    return out;
   }
 
   // The part of E Q_k that lines within kNearBins carry at their positive frequency: the
@@ -164,10 +187,10 @@ class WelchLaw {
   double near_mean(int k) const {
     const double omega_k = layout_.bin_omega(k), reach = kNearBins * layout_.bin_omega(1);
     double sum = 0;
-    for (const auto& line : lines_) {
-      if (line.highest < omega_k - reach || line.lowest > omega_k + reach) continue;
-      for (const auto& node : line.nodes) {
-        sum += node.variance / 2 / double(line.nodes.size()) * std::norm(response_(omega_k - node.omega));
+    for (auto line = first_line_above(omega_k - reach); line != lines_.end() && line->lowest <= omega_k + reach;
+         ++line) {
+      for (const auto& node : line->nodes) {
+        sum += node.variance / 2 / double(line->nodes.size()) * std::norm(response_(omega_k - node.omega));
       }
     }
     return sum;
@@ -180,10 +203,10 @@ class WelchLaw {
     std::vector<Complex> total(std::size_t(2 * lags - 1), 0.0);
     std::vector<double> own(std::size_t(2 * lags - 1), 0.0);
     double fourth = 0, product = 0;
-    for (const auto& line : lines_) {
-      if (line.highest < std::min(omega_k, omega_l) - reach || line.lowest > std::max(omega_k, omega_l) + reach) {
-        continue;
-      }
+    const double top = std::max(omega_k, omega_l) + reach;
+    for (auto it = first_line_above(std::min(omega_k, omega_l) - reach); it != lines_.end() && it->lowest <= top;
+         ++it) {
+      const DeclaredLine& line = *it;
       const double weight = 1.0 / double(line.nodes.size());
       std::vector<Complex> h(total.size(), 0.0);
       double mu_k = 0, mu_l = 0, f = 0;
@@ -193,9 +216,11 @@ class WelchLaw {
         const Complex cross = weight * half * wk * std::conj(wl);
         mu_k += weight * half * std::norm(wk), mu_l += weight * half * std::norm(wl);
         f += weight * half * half * std::norm(wk) * std::norm(wl);
-        for (int m = -(lags - 1); m < lags; ++m) {
-          h[std::size_t(m + lags - 1)] += cross * std::polar(1.0, node.omega * m * layout_.hop_time());
-        }
+        // e^(iω m H) for m = −(K−1) … K−1 by rotation from m = −(K−1): K ≤ 10⁴ steps keep it
+        // within 10⁻¹² of the direct value.
+        const Complex step = std::polar(1.0, node.omega * layout_.hop_time());
+        Complex turn = std::polar(1.0, -node.omega * (lags - 1) * layout_.hop_time());
+        for (std::size_t m = 0; m < h.size(); ++m, turn *= step) h[m] += cross * turn;
       }
       for (std::size_t m = 0; m < h.size(); ++m) total[m] += h[m], own[m] += std::norm(h[m]);
       fourth += (2 - kappa_) * f, product += mu_k * mu_l;
@@ -209,10 +234,16 @@ class WelchLaw {
   }
 
  private:
+  // The first line whose highest node lies at `omega` or above (lines ascend in ω).
+  std::vector<DeclaredLine>::const_iterator first_line_above(double omega) const {
+    return std::partition_point(lines_.begin(), lines_.end(),
+                                [omega](const DeclaredLine& line) { return line.highest < omega; });
+  }
   WelchLayout layout_;
   HannResponse response_;
   double kappa_;
   std::vector<DeclaredLine> lines_;
+  double total_half_variance_ = 0, far_response_ = 0;
 };
 
 // Rings of consecutive judged bins, their sums' means and variances (covariances within the
@@ -392,8 +423,9 @@ void welch_spectrum_and_energy(const ProbeCase& c, const std::vector<std::vector
   std::vector<int> bins;
   std::vector<double> means, nears, omega;
   for (int k = 2; k <= w.length / 2 - 2; ++k) {
-    const double mean = law.mean(k), near = law.near_mean(k);
-    if (!(mean > floor) || near < 0.999 * mean) continue;
+    const auto [mean, far_bound] = law.mean(k);
+    const double near = law.near_mean(k);
+    if (!(mean > floor) || near < 0.999 * (mean + far_bound)) continue;
     bins.push_back(k), means.push_back(mean), nears.push_back(near), omega.push_back(w.bin_omega(k));
   }
   const std::string subject = c.describe();
