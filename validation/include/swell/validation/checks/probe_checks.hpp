@@ -15,8 +15,13 @@
 //                        Σ I ≤ 2 r² by Parseval, r the bound on a value's rounding;
 //   series.phase         long-crested: conj X_q at probe p over probe 0's is e^(i k(ω) ê·Δx)
 //                        exactly, k of the case's depth — a deep-water k in finite depth is named.
-// Checks whose law the case's scheme does not give yet are skipped, saying so; a record that is
-// not whole repeat periods of uniform lines is refused (InvalidInput), not passed unjudged.
+//   series.moments       Hs, Tm01 and Tm02 of the line powers (checks/probes/spectral_moments.cpp);
+//   series.repeat_period a record longer than repeat_period/dt samples repeats exactly;
+//   series.skewness, series.kurtosis against simulated nulls (checks/probes/skewness_kurtosis.hpp).
+// Any other record (equal-energy or random frequencies, or not whole repeat periods) is judged by
+// Welch estimates and its mean square against their exact moments over the declared lines
+// (checks/probes/welch_spectrum.cpp). Exact checks allow the stored rounding plus a double
+// engine's own arithmetic. Checks whose law the scheme does not give yet are skipped, saying so.
 #include <vector>
 
 #include "swell/reference/probe_sea.hpp"
