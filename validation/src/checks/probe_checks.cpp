@@ -17,8 +17,12 @@ using reference::ProbeFrequencies;
 int probe_statistical_check_count(const ProbeCase& c) {
   const int simulated = moment_null_simulated(c) ? 2 : 0;  // skewness, kurtosis
   if (!line_bins(c).periodic) return 2 + simulated;         // Welch: spectrum, energy
-  if (c.synthesis.amplitudes == ProbeAmplitudes::rayleigh) return 3 + simulated;  // spectrum, energy, moments
-  return (equal_phasor_scheme(c) ? 3 : 0) + simulated;                   // spectrum, energy, moments
+  // series.direction, where one direction per frequency meets three probes or more (it may
+  // still skip, leaving its share unspent: conservative).
+  const int direction =
+      c.synthesis.directions == ProbeDirections::single_per_frequency && c.layout.positions.size() >= 3 ? 1 : 0;
+  if (c.synthesis.amplitudes == ProbeAmplitudes::rayleigh) return 3 + simulated + direction;
+  return (equal_phasor_scheme(c) ? 3 : 0) + simulated + direction;  // spectrum, energy, moments
 }
 
 ProbeCheckReport run_probe_checks(const ProbeCase& c, const std::vector<std::vector<double>>& elevation,
@@ -59,11 +63,13 @@ ProbeCheckReport run_probe_checks(const ProbeCase& c, const std::vector<std::vec
   }
   if (c.synthesis.directions == ProbeDirections::long_crested && spectra.size() >= 2) {
     phase(c, lines, spectra, report);
+  } else if (c.synthesis.directions == ProbeDirections::single_per_frequency && spectra.size() >= 2) {
+    plane_waves(c, lines, spectra, alpha, report);
   } else {
     report.skipped.push_back({"series.phase", SkipReason::scheme_not_judged,
                               spectra.size() < 2 ? "one probe: no phase between probes"
-                                                 : "a spread sea: the phase between probes is judged by its "
-                                                   "coherence, which swell does not judge yet"});
+                                                 : "several directions per frequency: the phase between probes "
+                                                   "is judged by its coherence, which swell does not judge yet"});
   }
   report.notes.push_back(fmt::format("{} lines on bins q = {} i of the record's {} samples ({} whole repeat "
                                      "period{})",

@@ -57,7 +57,8 @@ TEST(ProbeCalibration, RightSeriesFailAtTheirFalseAlarmRateOverTwoHundredSeeds) 
   const std::pair<sr::ProbeAmplitudes, sr::ProbeDirections> schemes[] = {
       {sr::ProbeAmplitudes::rayleigh, sr::ProbeDirections::long_crested},
       {sr::ProbeAmplitudes::rayleigh, sr::ProbeDirections::double_summation},
-      {sr::ProbeAmplitudes::deterministic, sr::ProbeDirections::double_summation}};
+      {sr::ProbeAmplitudes::deterministic, sr::ProbeDirections::double_summation},
+      {sr::ProbeAmplitudes::rayleigh, sr::ProbeDirections::single_per_frequency}};
   for (const auto& [amplitudes, directions] : schemes) {
     const auto c = sea(amplitudes, directions);
     c.validate();

@@ -199,4 +199,33 @@ TEST(ProbeCatalogue, WelchJudgedRecordsNameTheirEnergyFactor) {
                "series.energy", "amplitudes × 2π");
 }
 
+// One direction per frequency read from three probes or more: each line must be one plane wave
+// at the case's k(ω), and the lines' directions must follow D(ω, θ).
+TEST(ProbeCatalogue, DirectionsOfSinglePerFrequencySeasAreNamed) {
+  auto c = sea(sr::ProbeAmplitudes::rayleigh, sr::ProbeDirections::single_per_frequency);
+  c.layout.positions = {{0.0, 0.0}, {8.0, 0.0}, {0.0, 8.0}, {20.0, 12.0}};
+  c.validate();
+  expect_all_pass(judge(c, engine(c, [](auto&) {})));
+  const double mean = c.spectrum()->mean_direction();
+  expect_named(judge(c, engine(c, [](auto& lines) {
+                 for (auto& line : lines) line.theta += kPi;
+               })),
+               "series.direction", "against the declared direction");
+  // Directions spread three times wider about the mean than D: a wider spreading than declared.
+  expect_named(judge(c, engine(c, [mean](auto& lines) {
+                 for (auto& line : lines) line.theta = mean + 3 * std::remainder(line.theta - mean, 2 * kPi);
+               })),
+               "series.direction", "wider spreading");
+  expect_named(judge(c, engine(c, [](auto& lines) {
+                 for (auto& line : lines) line.k = line.omega * line.omega / 9.80665;
+               })),
+               "series.phase", "deep-water");
+  // Two directions per frequency judged as one: no plane wave explains a line.
+  auto two = c;
+  two.synthesis.directions = sr::ProbeDirections::double_summation;
+  two.synthesis.n_directions = 2;
+  two.validate();
+  expect_named(judge(c, engine(two, [](auto&) {})), "series.phase", "more than one direction");
+}
+
 }  // namespace

@@ -91,6 +91,11 @@ std::size_t repeat_period_samples(const reference::ProbeCase& c);
 // series.repeat_period: a record longer than M samples repeats after M, exactly.
 void repeat_period(const reference::ProbeCase& c, const std::vector<std::vector<double>>& elevation,
                    const std::vector<double>& rounding, ProbeCheckReport& report);
+// One direction per frequency: series.phase — each line's phases between probes are one plane
+// wave's at the case's k(ω), exactly — and, with three probes or more off one line,
+// series.direction — the lines' directions read from their plane waves against D(ω, θ).
+void plane_waves(const reference::ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpectrum>& spectra,
+                 double alpha, ProbeCheckReport& report);
 void stray_energy(const reference::ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpectrum>& spectra,
                   ProbeCheckReport& report);
 void same_amplitude(const reference::ProbeCase& c, const LineBins& lines,
