@@ -39,6 +39,10 @@ swell_require("Google Benchmark" libbenchmark-dev benchmark_FOUND)
 find_package(Ceres QUIET)
 swell_require("Ceres Solver" libceres-dev Ceres_FOUND)
 
+# Eigen (Ceres's own dependency): the probe checks' small Hermitian eigenproblems.
+find_package(Eigen3 3.3 QUIET NO_MODULE)
+swell_require("Eigen" libeigen3-dev Eigen3_FOUND)
+
 # find_package(OpenImageIO) fails on Debian 12 (its config names /usr/include/opencv4);
 # pkg-config works.
 pkg_check_modules(OpenImageIO QUIET IMPORTED_TARGET OpenImageIO)

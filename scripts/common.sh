@@ -14,7 +14,7 @@ SWELL_BUILD_DIR="${SWELL_BUILD_DIR:-$SWELL_ROOT/build}"
 # a change recompile only what changed, even after a fresh configure (swell_compiler_launcher).
 SWELL_PACKAGES=(
   build-essential cmake pkg-config
-  libfftw3-dev libgtest-dev libgmock-dev libbenchmark-dev libceres-dev libopenimageio-dev
+  libfftw3-dev libgtest-dev libgmock-dev libbenchmark-dev libceres-dev libeigen3-dev libopenimageio-dev
   libopenexr-dev libdeflate-dev
   libvulkan-dev mesa-vulkan-drivers glslc vulkan-tools vulkan-validationlayers
   libvkfft-dev glslang-dev spirv-tools

@@ -329,6 +329,14 @@ std::vector<WaveLine> probe_wave_lines(const ProbeCase& c, std::uint64_t seed) {
   return out;
 }
 
+std::vector<double> sector_directions(const DirectionalSpectrum& sea, double omega, int count) {
+  const double from = sea.mean_direction() - kPi;
+  const auto density = direction_distribution(sea, omega, from, kDirectionCells);
+  std::vector<double> out;
+  for (int j = 0; j < count; ++j) out.push_back(inverse_direction_cdf(density, from, (j + 0.5) / count));
+  return out;
+}
+
 std::vector<double> probe_series_direct(const std::vector<WaveLine>& lines, double x, double y,
                                         const ProbeLayout& layout) {
   std::vector<double> out(layout.samples, 0.0);

@@ -19,8 +19,12 @@ int probe_statistical_check_count(const ProbeCase& c) {
   if (!line_bins(c).periodic) return 2 + simulated;         // Welch: spectrum, energy
   // series.direction, where one direction per frequency meets three probes or more (it may
   // still skip, leaving its share unspent: conservative).
+  // series.coherence where several directions per frequency meet two probes or more.
   const int direction =
-      c.synthesis.directions == ProbeDirections::single_per_frequency && c.layout.positions.size() >= 3 ? 1 : 0;
+      (c.synthesis.directions == ProbeDirections::single_per_frequency && c.layout.positions.size() >= 3) ||
+              (c.synthesis.directions == ProbeDirections::double_summation && c.layout.positions.size() >= 2)
+          ? 1
+          : 0;
   if (c.synthesis.amplitudes == ProbeAmplitudes::rayleigh) return 3 + simulated + direction;
   return (equal_phasor_scheme(c) ? 3 : 0) + simulated + direction;  // spectrum, energy, moments
 }
@@ -65,11 +69,11 @@ ProbeCheckReport run_probe_checks(const ProbeCase& c, const std::vector<std::vec
     phase(c, lines, spectra, report);
   } else if (c.synthesis.directions == ProbeDirections::single_per_frequency && spectra.size() >= 2) {
     plane_waves(c, lines, spectra, alpha, report);
+  } else if (spectra.size() >= 2) {
+    coherence(c, lines, spectra, alpha, report);
   } else {
     report.skipped.push_back({"series.phase", SkipReason::scheme_not_judged,
-                              spectra.size() < 2 ? "one probe: no phase between probes"
-                                                 : "several directions per frequency: the phase between probes "
-                                                   "is judged by its coherence, which swell does not judge yet"});
+                              "one probe: no phase between probes"});
   }
   report.notes.push_back(fmt::format("{} lines on bins q = {} i of the record's {} samples ({} whole repeat "
                                      "period{})",

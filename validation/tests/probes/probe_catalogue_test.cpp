@@ -228,4 +228,17 @@ TEST(ProbeCatalogue, DirectionsOfSinglePerFrequencySeasAreNamed) {
   expect_named(judge(c, engine(two, [](auto&) {})), "series.phase", "more than one direction");
 }
 
+// Several directions per frequency: the probes' cross-spectra against the declared spreading.
+TEST(ProbeCatalogue, TheCoherenceOfDoubleSummationSeasNamesReversedTravel) {
+  for (const auto amplitudes : {sr::ProbeAmplitudes::rayleigh, sr::ProbeAmplitudes::deterministic}) {
+    const auto c = sea(amplitudes, sr::ProbeDirections::double_summation, 8);
+    SCOPED_TRACE(sr::to_string(amplitudes));
+    expect_all_pass(judge(c, engine(c, [](auto&) {})));
+    expect_named(judge(c, engine(c, [](auto& lines) {
+                   for (auto& line : lines) line.theta += kPi;
+                 })),
+                 "series.coherence", "against the declared direction");
+  }
+}
+
 }  // namespace

@@ -139,6 +139,9 @@ TEST(ProbeSea, DirectionSectorsCarryTheSpreadingsFirstCircularMoment) {
     }
     EXPECT_NEAR(resultant.real(), 10.0 / 11, 2e-4);
     EXPECT_NEAR(resultant.imag(), 0, 1e-6);
+    // sector_directions gives the gate the same directions, bit for bit.
+    const auto sectors = sr::sector_directions(*c.spectrum(), lines[std::size_t(frequency * 360)].omega, 360);
+    for (int j = 0; j < 360; ++j) ASSERT_EQ(sectors[std::size_t(j)], lines[std::size_t(frequency * 360 + j)].theta);
   }
 }
 

@@ -121,6 +121,10 @@ std::vector<FrequencyLine> probe_frequency_lines(const ProbeCase& probe_case);
 std::vector<double> direction_distribution(const DirectionalSpectrum& sea, double omega, double from,
                                            int count);
 
+// The directions of double summation's `count` lines at ω (rad): the medians of D(ω, ·)'s
+// equal-probability sectors, as probe_wave_lines places them (the same numbers bit for bit).
+std::vector<double> sector_directions(const DirectionalSpectrum& sea, double omega, int count);
+
 // η at (x, y) at the layout's times, summed line by line with exactly reduced phases: the
 // oracle of faster evaluations (impls/probe_synthesis.hpp).
 std::vector<double> probe_series_direct(const std::vector<WaveLine>& lines, double x, double y,

@@ -96,6 +96,10 @@ void repeat_period(const reference::ProbeCase& c, const std::vector<std::vector<
 // series.direction — the lines' directions read from their plane waves against D(ω, θ).
 void plane_waves(const reference::ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpectrum>& spectra,
                  double alpha, ProbeCheckReport& report);
+// Several directions per frequency: series.coherence — each line's vector of probe amplitudes
+// whitened by the covariance R its declared directions give, against its exact law.
+void coherence(const reference::ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpectrum>& spectra,
+               double alpha, ProbeCheckReport& report);
 void stray_energy(const reference::ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpectrum>& spectra,
                   ProbeCheckReport& report);
 void same_amplitude(const reference::ProbeCase& c, const LineBins& lines,
