@@ -134,6 +134,68 @@ CoherenceTest coherence_test(const ProbeCase& c, const LineBins& lines, const st
   return out;
 }
 
+// The direction read by beamforming (Bartlett's, the direct Fourier transform method): for each
+// line B(θ) = |a(θ)^H Z|² with a_p = e^(−ik ê(θ)·x_p)/√P, summed over the lines holding 10⁻² of
+// the strongest line's power and more; its mean direction and mean resultant length. The same
+// estimator applied to the declared covariance, a^H R a, gives what the declared spreading looks
+// like through this array (the beam's width spreads both alike), so the two compare.
+struct Beamformed {
+  double measured_direction = 0, measured_length = 0, declared_direction = 0, declared_length = 0;
+  std::size_t lines = 0;
+};
+
+Beamformed beamform(const ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpectrum>& spectra,
+                    const std::vector<std::vector<double>>& thetas) {
+  constexpr int kBeams = 120;
+  const auto dispersion = c.sea.dispersion();
+  const auto& positions = c.layout.positions;
+  const std::size_t probes = positions.size();
+  double strongest = 0;
+  for (double e : lines.expected) strongest = std::max(strongest, e);
+  std::vector<double> measured(kBeams, 0.0), declared(kBeams, 0.0);
+  Beamformed out;
+  for (std::size_t i = 0; i < lines.bins.size(); ++i) {
+    if (lines.expected[i] < 1e-2 * strongest || thetas[i].empty()) continue;
+    const double k = dispersion.wavenumber(lines.omega[i]), scale = std::sqrt(lines.expected[i] / 2);
+    const auto plane_wave = [&](double theta, std::size_t p) {
+      return std::polar(1.0, -k * (std::cos(theta) * positions[p][0] + std::sin(theta) * positions[p][1]));
+    };
+    std::vector<Complex> sources;  // v_j,p of the declared directions, j-major
+    for (double direction : thetas[i]) {
+      for (std::size_t p = 0; p < probes; ++p) sources.push_back(plane_wave(direction, p));
+    }
+    std::vector<Complex> steer(probes);
+    for (int b = 0; b < kBeams; ++b) {
+      const double theta = 2 * kPi * b / kBeams;
+      Complex beam = 0;
+      for (std::size_t p = 0; p < probes; ++p) {
+        steer[p] = std::conj(plane_wave(theta, p));
+        beam += steer[p] * spectra[p].x[lines.bins[i]] / scale;
+      }
+      measured[std::size_t(b)] += std::norm(beam) / double(probes);
+      // a^H R a = (1/n) Σ_j |a^H v_j|².
+      double expected = 0;
+      for (std::size_t j = 0; j < thetas[i].size(); ++j) {
+        Complex projection = 0;
+        for (std::size_t p = 0; p < probes; ++p) projection += steer[p] * sources[j * probes + p];
+        expected += std::norm(projection);
+      }
+      declared[std::size_t(b)] += expected / double(thetas[i].size()) / double(probes);
+    }
+    ++out.lines;
+  }
+  Complex m = 0, d = 0;
+  double m_total = 0, d_total = 0;
+  for (int b = 0; b < kBeams; ++b) {
+    const Complex turn = std::polar(1.0, 2 * kPi * b / kBeams);
+    m += measured[std::size_t(b)] * turn, d += declared[std::size_t(b)] * turn;
+    m_total += measured[std::size_t(b)], d_total += declared[std::size_t(b)];
+  }
+  out.measured_direction = std::arg(m), out.measured_length = m_total > 0 ? std::abs(m) / m_total : 0;
+  out.declared_direction = std::arg(d), out.declared_length = d_total > 0 ? std::abs(d) / d_total : 0;
+  return out;
+}
+
 }  // namespace
 
 void coherence(const ProbeCase& c, const LineBins& lines, const std::vector<ProbeSpectrum>& spectra, double alpha,
@@ -159,6 +221,14 @@ void coherence(const ProbeCase& c, const LineBins& lines, const std::vector<Prob
   std::string reason = fmt::format("{} lines over {} probes: the worst ring's whitened power is {:.3f} × its mean "
                                    "(p = {:.2g})",
                                    test.lines, spectra.size(), test.ratio, test.p);
+  const auto beams = beamform(c, lines, spectra, by_frequency);
+  if (beams.lines > 0) {
+    const auto degrees = [](double radians) { return std::remainder(radians * 180 / kPi, 360.0); };
+    reason += fmt::format("; beamformed over {} lines: travel toward {:.1f}°, mean resultant length {:.3f} (the "
+                          "declared spreading through this array: {:.1f}°, {:.3f})",
+                          beams.lines, degrees(beams.measured_direction), beams.measured_length,
+                          degrees(beams.declared_direction), beams.declared_length);
+  }
   if (test.p < alpha) {
     const auto reversed = coherence_test(c, lines, spectra, by_frequency, {0, kPi});
     const auto deep = coherence_test(c, lines, spectra, by_frequency, {1, 0});
