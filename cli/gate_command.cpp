@@ -84,9 +84,13 @@ int run_gate_command(const GateCommandOptions& o) {
     }
     report = validation::run_gate(case_file, options);
   } catch (const InvalidInput& e) {
-    // The CI job's test report then shows why the gate could not judge (exit code 2).
+    // The CI job's test report then shows why the gate could not judge (exit code 2), in JUnit
+    // and in JSON alike.
     if (!o.junit.empty()) {
       write_text(o.junit, validation::gate_junit_error(o.case_file, e.what()), "JUnit XML");
+    }
+    if (!o.json.empty()) {
+      write_json(o.json, nlohmann::json{{"case", o.case_file}, {"pass", false}, {"exit_code", 2}, {"error", e.what()}});
     }
     throw;
   }

@@ -725,12 +725,18 @@ TEST_F(GateCli, BadOptionsAreFoundBeforeAnyFrameIsRead) {
   write_engine_frames(EngineBug::none, FrameFormat::exr, 3);
   fs::remove_all(dir_ / "frames");
   for (const std::string option : {"--alpha 0", "--alpha nan", "--threads -2"}) {
+    fs::remove(path("gate.json"));
     const CliRun run = swell("gate --case " + path("case.toml") + " " + option + " --junit " +
-                             path("junit.xml"));
+                             path("junit.xml") + " --json " + path("gate.json"));
     EXPECT_EQ(run.exit_code, 2) << option << ": " << run.output;
     EXPECT_FALSE(contains(run.output, "missing frame file")) << option << ": " << run.output;
     EXPECT_TRUE(contains(run.output, option.substr(2, option.find(' ') - 2))) << run.output;
     EXPECT_TRUE(contains(read_text(path("junit.xml")), "<error message=")) << option;
+    // The JSON report carries the error too, with the exit code.
+    const auto json = nlohmann::json::parse(read_text(path("gate.json")));
+    EXPECT_EQ(json["pass"], false) << option;
+    EXPECT_EQ(json["exit_code"], 2) << option;
+    EXPECT_TRUE(contains(json["error"].get<std::string>(), option.substr(2, option.find(' ') - 2))) << option;
   }
   swell::validation::GateOptions options;
   options.alpha = 2;
