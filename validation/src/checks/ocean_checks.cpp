@@ -34,28 +34,29 @@ struct TableEntry {
 const std::vector<TableEntry>& table() {
   using enum SkipReason;
   static const std::vector<TableEntry> entries = {
-      {{"hermitian", false, false, 1, "height (and imaginary parts when given)", 7, false, {}},
+      {{"hermitian", false, false, 1, "height (and imaginary parts when given)", 7, {}},
        check_hermitian},
-      {{"parseval", false, false, 1, "every frame's height", 8, false, {}},
+      {{"parseval", false, false, 1, "every frame's height", 8, {}},
        check_parseval, false, true},
-      {{"energy", true, true, 1, "frame 0's height", 9, false, {free_scale}}, check_energy},
-      {{"spectrum", true, false, 1, "frame 0's height", 6, false, {}}, check_spectrum},
-      {{"moments", true, false, 1, "frame 0's height", 4, false, {free_scale, no_wave_motion}},
+      {{"energy", true, true, 1, "frame 0's height", 9, {free_scale}}, check_energy},
+      {{"spectrum", true, false, 1, "frame 0's height; every frame's for unexpected energy", 6, {}},
+       check_spectrum, false, true},
+      {{"moments", true, false, 1, "frame 0's height", 4, {free_scale, no_wave_motion}},
        check_moments},
-      {{"dispersion", false, false, 1, "the heights of ≥ 3 frames at identifiable times", 3, false,
+      {{"dispersion", false, false, 1, "the heights of ≥ 3 frames at identifiable times", 3,
         {too_few_frames, unidentifiable_times, above_nyquist}},
        check_dispersion, true},
-      {{"direction", true, false, 2, "the heights of ≥ 2 frames at identifiable times", 5, false,
+      {{"direction", true, false, 2, "the heights of ≥ 2 frames at identifiable times", 5,
         {too_few_frames, unidentifiable_times, too_few_wave_vectors}},
        check_direction, true},
-      {{"randomness", true, false, 1, "the heights of ≥ 2 frames, or of one at t = 0", 10, false,
+      {{"randomness", true, false, 1, "the heights of ≥ 2 frames, or of one at t = 0", 10,
         {unidentifiable_times, ambiguous_phase}},
        check_randomness, true},
-      {{"statistics", true, false, 1, "frame 0's height; every frame's for hs_steady", 1, false,
+      {{"statistics", true, false, 1, "frame 0's height; every frame's for hs_steady", 1,
         {too_few_frames}},
        check_statistics},
-      {{"derived", false, false, 1, "slopes, displacements or Jacobian of the first and last frames",
-        2, true, {no_field}},
+      {{"derived", false, false, 1, "slopes, displacements or Jacobian of every frame", 2,
+        {no_field}},
        check_derived},
   };
   return entries;
@@ -133,7 +134,7 @@ std::vector<OceanCheckGroup> ocean_check_groups_longest_first() {
     return x->cost_rank < y->cost_rank;
   });
   std::vector<OceanCheckGroup> groups;
-  for (const auto* row : rows) groups.push_back({{std::string(row->name)}, row->ends_only});
+  for (const auto* row : rows) groups.push_back({{std::string(row->name)}});
   return groups;
 }
 
@@ -170,7 +171,6 @@ OceanCheckReport run_ocean_checks(const OceanCase& ocean_case, const FrameSequen
 
 std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case,
                                                      const FrameSequence& frames,
-                                                     const FrameSequence& ends,
                                                      const OceanCheckOptions& options,
                                                      const std::vector<OceanCheckGroup>& groups,
                                                      std::vector<double> travelling_power,
@@ -178,21 +178,8 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
   for (const auto& group : groups) {
     for (const auto& name : group.checks) entry(name);
   }
-  // One analysis of the surface for every group, and one over the end frames that shares it
-  // when their frame 0 is the same field.
-  std::vector<double> ends_travelling_power;
-  if (&ends != &frames) ends_travelling_power = travelling_power;
+  // One analysis of the surface for every group.
   const Analysis analysis(ocean_case, frames, options, std::move(travelling_power), threads);
-  const bool same_first = &ends == &frames || ends.field(0, Field::height) == frames.field(0, Field::height);
-  std::optional<Analysis> ends_analysis;
-  const bool any_ends = std::any_of(groups.begin(), groups.end(), [](const OceanCheckGroup& g) { return g.ends_only; });
-  if (any_ends && &ends != &frames) {
-    if (same_first) {
-      ends_analysis.emplace(analysis, ends);
-    } else {
-      ends_analysis.emplace(ocean_case, ends, options, std::move(ends_travelling_power));
-    }
-  }
   // The wave series and per-wave fits the checks read, made first on every thread: a group that
   // needed them would otherwise make them on one thread while the other groups wait for them.
   auto any_group_reads = [&](auto reads) {
@@ -210,8 +197,7 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
   }
   std::vector<OceanCheckReport> parts(groups.size());
   detail::run_tasks(groups.size(), threads, [&](std::size_t g) {
-    const Analysis& judged = groups[g].ends_only && ends_analysis ? *ends_analysis : analysis;
-    parts[g] = run_on(judged, groups[g].checks, g == 0);
+    parts[g] = run_on(analysis, groups[g].checks, g == 0);
   });
   return parts;
 }

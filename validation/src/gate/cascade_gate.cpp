@@ -23,9 +23,8 @@ namespace {
 // none) and the sum's (null when none).
 GateReport judge_cascades(const CaseFile& case_file,
                           const std::vector<reference::FrameSequence>& cascades,
-                          const std::vector<reference::FrameSequence>& cascade_ends,
                           const reference::FrameSequence* sum,
-                          const reference::FrameSequence* sum_ends, const GateOptions& options,
+                          const GateOptions& options,
                           Clock::time_point start) {
   options.validate();
   const bool additive = case_file.relation == reference::CascadeRelation::additive;
@@ -67,10 +66,9 @@ GateReport judge_cascades(const CaseFile& case_file,
   // Judges one surface; its results, named "<name>.<check>", are returned for the caller to
   // place, its skipped checks go to the report.
   auto judge_surface = [&](const std::string& name, const CaseFile& surface,
-                           const reference::FrameSequence& frames,
-                           const reference::FrameSequence& ends) {
+                           const reference::FrameSequence& frames) {
     options.report_progress(fmt::format("judging {}…", name));
-    GateReport part = judge(surface, frames, ends,
+    GateReport part = judge(surface, frames,
                             expected_travelling_power(surface.ocean, options.resolved_threads()),
                             options, start, alpha_per_check);
     for (auto& result : part.results) result.check = name + "." + result.check;
@@ -102,7 +100,7 @@ GateReport judge_cascades(const CaseFile& case_file,
   for (auto c : given) {
     const std::string name = fmt::format("cascade{}", c);
     ordinary[c] = judge_surface(name, surface_case_file(case_file, oceans[c], case_file.cascades[c].input),
-                                cascades[c], cascade_ends[c]);
+                                cascades[c]);
     views.push_back({int(c), &oceans[c], &cascades[c]});
   }
   CascadeSetResults set_results;
@@ -125,8 +123,7 @@ GateReport judge_cascades(const CaseFile& case_file,
         {"cascades", SkipReason::too_few_cascades, "needs the frames of two or more cascades"});
   }
   if (sum) {
-    auto results = judge_surface("sum", surface_case_file(case_file, *summed, case_file.sum), *sum,
-                                 *sum_ends);
+    auto results = judge_surface("sum", surface_case_file(case_file, *summed, case_file.sum), *sum);
     append(results);
     auto bands = check_summed_bands(*summed, *sum, alpha_per_check);
     append(bands);
@@ -145,7 +142,7 @@ GateReport run_cascade_gate(const CaseFile& case_file,
     throw InvalidInput(fmt::format("the set has {} cascades; frames were given for {}",
                                    case_file.cascades.size(), cascades.size()));
   }
-  return judge_cascades(case_file, cascades, cascades, sum, sum, options, Clock::now());
+  return judge_cascades(case_file, cascades, sum, options, Clock::now());
 }
 
 namespace gate_path {
@@ -157,35 +154,31 @@ GateReport read_and_judge_cascades(const CaseFile& case_file, const GateOptions&
     throw InvalidInput("--input replaces a single surface's [input] files; a cascade set names "
                        "each cascade's frames in its [[cascade]] table and the sum's in [sum]");
   }
-  std::vector<reference::FrameSequence> all(case_file.cascades.size()),
-      ends(case_file.cascades.size());
+  std::vector<reference::FrameSequence> all(case_file.cascades.size());
   auto read_surface = [&](const reference::OceanCase& ocean, const InputSpec& input,
-                          reference::FrameSequence& frames, reference::FrameSequence& end) {
+                          reference::FrameSequence& frames) {
     const CaseFile surface = surface_case_file(case_file, ocean, input);
-    require_gate_memory(ocean, threads);
+    require_gate_memory(ocean, input.channels.size(), threads);
     const auto sampling = ocean.sampling();
     reference::require_valid_sampling(ocean, reference::kFloat64);
     options.report_progress(fmt::format("reading {} frame{} on a {}…", ocean.frames,
                                        ocean.frames == 1 ? "" : "s", sampling.describe()));
-    GateFrames read = read_gate_frames(surface, "", threads);
-    frames = std::move(read.all);
-    end = std::move(read.ends);
+    frames = read_gate_frames(surface, "", threads);
   };
   for (std::size_t c = 0; c < case_file.cascades.size(); ++c) {
     if (case_file.cascades[c].input.files.empty()) continue;
-    read_surface(case_file.cascade_case(c), case_file.cascades[c].input, all[c], ends[c]);
+    read_surface(case_file.cascade_case(c), case_file.cascades[c].input, all[c]);
   }
-  reference::FrameSequence sum, sum_ends;
+  reference::FrameSequence sum;
   const bool has_sum = !case_file.sum.files.empty();
   if (has_sum) {
     std::string why;
     const auto summed = case_file.summed_case(&why);
     if (!summed) throw InvalidInput("[sum]: the cascades cannot be summed on one grid: " + why);
-    read_surface(*summed, case_file.sum, sum, sum_ends);
+    read_surface(*summed, case_file.sum, sum);
   }
   const double reading = seconds_since(start);
-  GateReport report = judge_cascades(case_file, all, ends, has_sum ? &sum : nullptr,
-                                     has_sum ? &sum_ends : nullptr, options, start);
+  GateReport report = judge_cascades(case_file, all, has_sum ? &sum : nullptr, options, start);
   report.case_path = case_file.origin.string();
   report.read_seconds = reading;
   return report;

@@ -26,7 +26,7 @@ int statistical_check_count(SpectrumScale scale, std::size_t frames) {
 }
 
 GateReport judge(const CaseFile& case_file, const reference::FrameSequence& frames,
-                 const reference::FrameSequence& ends, std::vector<double> travelling_power,
+                 std::vector<double> travelling_power,
                  const GateOptions& options, Clock::time_point start, double alpha_per_check) {
   options.validate();
   const int threads = options.resolved_threads();
@@ -39,7 +39,7 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
   report.samples = frames.lattice ? frames.sampling().describe()
                                   : fmt::format("{}×{}", report.nx, report.ny);
   for (Field field : reference::kAllFields) {
-    if (ends.has(field)) report.fields.push_back(reference::field_name(field));
+    if (frames.has(field)) report.fields.push_back(reference::field_name(field));
   }
   report.alpha = options.alpha;
   report.statistical_checks = statistical_check_count(case_file.scale, frames.frames.size());
@@ -85,7 +85,7 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
   }
 
   // Bad input (a grid that does not match, no height field) is thrown by the analysis.
-  auto parts = run_ocean_check_groups(case_file.ocean, frames, ends, check_options,
+  auto parts = run_ocean_check_groups(case_file.ocean, frames, check_options,
                                       ocean_check_groups_longest_first(),
                                       std::move(travelling_power), threads);
   // Merged in the table's order, the fitted scale of a free-scale case first.

@@ -24,31 +24,23 @@ int statistical_check_count(SpectrumScale scale, std::size_t frames);
 // Throws InvalidInput (naming swell gate and the frames) when reading `ocean`'s frames on
 // `threads` threads needs more memory than the machine has; called before anything of the
 // grid's size is read.
-void require_gate_memory(const reference::OceanCase& ocean, int threads);
+void require_gate_memory(const reference::OceanCase& ocean, std::size_t fields, int threads);
 
-// What the gate keeps of a surface's frames: the height of every frame (what every check but
-// `derived` uses), and every field of the first and the last frame (the two frames `derived`
-// compares). Every field of every frame is read and checked (size, finite values); the other
-// fields of the frames between are then dropped, which at 512² × 64 frames × 6 fields saves
-// 0.6 GB. `all` holds the heights with the other fields on its first and last frames; `ends` the
-// first and last frames alone, every field (both frames, in order; one when the case has one
-// frame).
-struct GateFrames {
-  reference::FrameSequence all, ends;
-};
-GateFrames read_gate_frames(const CaseFile& case_file, const std::string& pattern_override,
-                            int threads);
+// Every field of every frame of a surface, read and checked (size, finite values): `derived`
+// judges each field on every frame, since a fault can live in some frames only.
+reference::FrameSequence read_gate_frames(const CaseFile& case_file,
+                                          const std::string& pattern_override, int threads);
 
 // A cascade's (or the sum's) own case file: its case, its frames' input, the set's scale.
 CaseFile surface_case_file(const CaseFile& set, const reference::OceanCase& ocean,
                            const InputSpec& input);
 
-// Judges one surface's frames (`ends`: its first and last frames with every field) at
+// Judges one surface's frames at
 // `alpha_per_check` each (NaN: options.alpha shared by this surface's statistical checks alone;
 // a cascade set shares α over all its surfaces). `travelling_power`: τ(k) of the case on its
 // samples (expected_travelling_power in ocean_checks.hpp), evaluated once before reading.
 GateReport judge(const CaseFile& case_file, const reference::FrameSequence& frames,
-                 const reference::FrameSequence& ends, std::vector<double> travelling_power,
+                 std::vector<double> travelling_power,
                  const GateOptions& options, Clock::time_point start,
                  double alpha_per_check = std::numeric_limits<double>::quiet_NaN());
 

@@ -23,7 +23,7 @@ GateReport read_and_judge(const CaseFile& case_file, const GateOptions& options,
   if (case_file.is_probe_case()) return read_and_judge_probes(case_file, options, start);
   const int threads = options.resolved_threads();
   const auto& ocean = case_file.ocean;
-  require_gate_memory(ocean, threads);
+  require_gate_memory(ocean, case_file.input.channels.size(), threads);
   // The rest of the sampling rule before any frame is read (a case no frames can satisfy is
   // refused as such, not as a missing file); the analysis applies it again in the frames'
   // stored format. τ(k) over the samples is evaluated once, on every thread, for this rule and
@@ -33,10 +33,9 @@ GateReport read_and_judge(const CaseFile& case_file, const GateOptions& options,
   reference::require_valid_sampling(ocean, reference::kFloat64, 0, "", &travelling);
   options.report_progress(fmt::format("reading {} frame{} on a {}…", ocean.frames,
                                       ocean.frames == 1 ? "" : "s", sampling.describe()));
-  const GateFrames frames = read_gate_frames(case_file, options.input_pattern, threads);
+  const auto frames = read_gate_frames(case_file, options.input_pattern, threads);
   const double reading = seconds_since(start);
-  GateReport report = judge(case_file, frames.all, frames.ends, std::move(travelling), options,
-                            start);
+  GateReport report = judge(case_file, frames, std::move(travelling), options, start);
   report.case_path = case_file.origin.string();
   report.read_seconds = reading;
   return report;
@@ -60,7 +59,7 @@ GateReport run_gate(const CaseFile& case_file, const reference::FrameSequence& f
   if (case_file.is_probe_case()) {
     throw InvalidInput(case_file.origin.string() + ": a probes case is judged on its series, not frames");
   }
-  return judge(case_file, frames, frames,
+  return judge(case_file, frames,
                expected_travelling_power(case_file.ocean, options.resolved_threads()), options,
                Clock::now());
 }

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <numbers>
 #include <set>
 
 #include "swell/impls/synthesizer.hpp"
@@ -193,6 +194,132 @@ TEST(Diagnosis, NamesTheChoppinessTheDisplacementsCarry) {
     EXPECT_NE(r.reason.find("no λ explains it"), std::string::npos) << r.reason;
     EXPECT_EQ(r.reason.find("sign flipped"), std::string::npos) << r.reason;
   }
+}
+
+// ------------------------------------------------------------------ every frame, several faults
+
+// The result of `check` in a report (a failure of the test when there is none).
+swell::validation::CheckResult result_of(const GateReport& report, const std::string& check) {
+  for (const auto& r : report.results) {
+    if (r.check == check) return r;
+  }
+  ADD_FAILURE() << "no result " << check << describe(report);
+  return {};
+}
+
+// The rms of a field over a frame sequence's frame 0.
+double rms_of(const swell::reference::FrameSequence& frames, swell::reference::Field field) {
+  const auto& v = frames.field(0, field);
+  double sum = 0;
+  for (double x : v) sum += x * x;
+  return std::sqrt(sum / double(v.size()));
+}
+
+// Fills a grid field's Nyquist row and column: c (−1)^i along x plus c (−1)^j along y, as an
+// engine that writes those bins (or packs two fields per complex transform) leaves them.
+void fill_nyquist(std::vector<double>& field, const Grid& grid, double c) {
+  for (int j = 0; j < grid.ny; ++j) {
+    for (int i = 0; i < grid.nx; ++i) {
+      field[std::size_t(j) * grid.nx + i] += c * ((i % 2 ? -1.0 : 1.0) + (j % 2 ? -1.0 : 1.0));
+    }
+  }
+}
+
+// A mean level that oscillates and is zero at frame 0 (sin, not cos): read from frame 0 alone
+// it passes; every frame is judged, and heave is named.
+TEST(EveryFrame, AMeanLevelZeroAtTheFirstFrameIsHeave) {
+  const OceanCase c = catalogue_case();
+  auto frames = swell::test::render_surface(c);
+  const double amplitude = 0.5 * rms_of(frames, swell::reference::Field::height);
+  for (auto& frame : frames.frames) {
+    const double level = amplitude * std::sin(2 * std::numbers::pi * frame.time / (c.frames * c.dt));
+    for (double& h : frame.fields[swell::reference::Field::height]) h += level;
+  }
+  ASSERT_EQ(frames.frames[0].time, 0.0);
+  const auto report = swell::validation::run_gate(as_case_file(c), frames, GateOptions{});
+  const auto r = result_of(report, "spectrum.unexpected_energy");
+  EXPECT_FALSE(r.passed) << r.reason;
+  EXPECT_NE(r.reason.find("the mean level moves (heave)"), std::string::npos) << r.reason;
+}
+
+// A displacement wrong in one middle frame only fails derived, which names that frame and λ.
+TEST(EveryFrame, ADerivedFieldWrongInOneMiddleFrameFails) {
+  const OceanCase c = catalogue_case();
+  auto frames = swell::test::render_surface(c);
+  for (double& d : frames.frames[3].fields[swell::reference::Field::disp_x]) d *= 1.25;
+  const auto report = swell::validation::run_gate(as_case_file(c), frames, GateOptions{});
+  const auto r = result_of(report, "derived.disp_x");
+  EXPECT_FALSE(r.passed) << r.reason;
+  EXPECT_NE(r.reason.find("at frame 3 (1 of 8 frames fail)"), std::string::npos) << r.reason;
+  EXPECT_NE(r.reason.find("λ is 1, not the case's 0.8"), std::string::npos) << r.reason;
+  EXPECT_TRUE(result_of(report, "derived.disp_y").passed);
+}
+
+// Two faults at once: a transposed height or swapped displacements, with every field's Nyquist
+// row and column filled (5 % of its rms). The fit on the wave vectors the case fills names the
+// first fault, and the Nyquist energy beside it.
+TEST(SeveralFaults, TransposeAndSwapHoldWithNyquistStrayEnergy) {
+  const OceanCase c = catalogue_case();
+  struct Case {
+    EngineBug bug;
+    std::string naming;
+  };
+  for (const Case& fault : {Case{EngineBug::transposed_height, "the field is transposed"},
+                            Case{EngineBug::swapped_displacements, "disp_x and disp_y swapped"}}) {
+    auto frames = swell::test::render_surface(c, fault.bug);
+    for (auto& frame : frames.frames) {
+      for (auto& [field, values] : frame.fields) {
+        if (field == swell::reference::Field::jacobian) continue;
+        fill_nyquist(values, c.grid, 0.05 * rms_of(frames, field));
+      }
+    }
+    const auto report = swell::validation::run_gate(as_case_file(c), frames, GateOptions{});
+    const auto r = result_of(report, "derived.disp_x");
+    EXPECT_FALSE(r.passed) << r.reason;
+    EXPECT_NE(r.reason.find(fault.naming), std::string::npos) << r.reason;
+    EXPECT_NE(r.reason.find("on the Nyquist row and column"), std::string::npos) << r.reason;
+    EXPECT_EQ(r.reason.find("no λ explains it"), std::string::npos) << r.reason;
+    // The height's own Nyquist energy is named by its own check.
+    EXPECT_NE(result_of(report, "spectrum.unexpected_energy").reason.find("Nyquist"), std::string::npos);
+  }
+}
+
+// A right displacement with a Nyquist leak alone (two fields packed per transform): the field
+// follows its definition with the case's λ where the case puts energy, and the leak is named —
+// not "λ is 0.8, not the case's 0.8".
+TEST(SeveralFaults, ANyquistLeakAloneIsNamedAsSuch) {
+  const OceanCase c = catalogue_case();
+  auto frames = swell::test::render_surface(c);
+  const double rms = rms_of(frames, swell::reference::Field::disp_y);
+  for (auto& frame : frames.frames) fill_nyquist(frame.fields[swell::reference::Field::disp_y], c.grid, 5e-3 * rms);
+  const auto report = swell::validation::run_gate(as_case_file(c), frames, GateOptions{});
+  const auto r = result_of(report, "derived.disp_y");
+  EXPECT_FALSE(r.passed) << r.reason;
+  EXPECT_NE(r.reason.find("follows its definition with the case's λ = 0.8"), std::string::npos) << r.reason;
+  EXPECT_NE(r.reason.find("on the Nyquist row and column"), std::string::npos) << r.reason;
+  EXPECT_EQ(r.reason.find("not the case's"), std::string::npos) << r.reason;
+}
+
+// λ = 0 declares no displacement: zero fields pass (their error is measured against what λ = 1
+// would put there, not divided by zero), and displacements of λ = 1 fail, saying so.
+TEST(Degenerate, ChoppinessZeroMeansNoDisplacement) {
+  OceanCase c = catalogue_case();
+  c.choppiness = 0;
+  const auto right = swell::validation::run_gate(as_case_file(c), swell::test::render_surface(c), GateOptions{});
+  for (const char* check : {"derived.disp_x", "derived.disp_y", "derived.jacobian"}) {
+    const auto r = result_of(right, check);
+    EXPECT_TRUE(r.passed) << check << ": " << r.reason;
+    EXPECT_TRUE(std::isfinite(r.measured) && r.measured == 0) << check << ": " << r.measured;
+  }
+  OceanCase engine = c;
+  engine.choppiness = 1;
+  const auto wrong = swell::validation::run_gate(as_case_file(c), swell::test::render_surface(engine), GateOptions{});
+  const auto r = result_of(wrong, "derived.disp_x");
+  EXPECT_FALSE(r.passed);
+  EXPECT_NEAR(r.measured, 1.0, 1e-9) << r.reason;  // λ = 1's displacement against λ = 1's
+  EXPECT_NE(r.reason.find("λ = 0 declares no displacement"), std::string::npos) << r.reason;
+  EXPECT_NE(r.reason.find("holds 1 × disp_x's definition"), std::string::npos) << r.reason;
+  EXPECT_NE(result_of(wrong, "derived.jacobian").reason.find("λ = 0 declares no displacement"), std::string::npos);
 }
 
 // The right engine of both catalogue seas passes the gate.

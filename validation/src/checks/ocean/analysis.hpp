@@ -156,6 +156,18 @@ class WaveSeries {
   std::unique_ptr<impls::HostBuffer> buffer_;
 };
 
+// One frame's energy where the case puts none: at k = 0, on wave vectors the sampling leaves
+// empty (a grid's Nyquist row and column) and where μ is below the resolution floor —
+// mean-square units (Σ |ĥ|² over those wave vectors).
+struct FrameStray {
+  double energy = 0;
+  double corner = 0;       // of it, within a quarter of the Nyquist corner on both axes (grids)
+  double largest = 0;      // the largest single entry's power,
+  std::size_t largest_at = 0;  // and its position in FFT order
+  double mean_level = 0;   // ĥ(0): the frame's mean level, m
+  double mean_square = 0;  // the frame's mean h², m²
+};
+
 class Analysis;
 std::string diagnose_table_declarations(const Analysis& a);
 
@@ -258,6 +270,9 @@ class Analysis {
     for (const Wave& w : shared_->half_plane) {
       if (w.mu >= floor_ && w.mu > 0) shared_->resolved.push_back(w);
     }
+    for (std::size_t e = 0; e < count_; ++e) {
+      if (!sampling_.carries_energy(e) || shared_->mu[e] < floor_) shared_->stray.push_back(e);
+    }
     if (shared_->resolved.empty()) {
       const bool rounding_hides_all = std::any_of(
           shared_->half_plane.begin(), shared_->half_plane.end(), [](const Wave& w) { return w.mu > 0; });
@@ -265,19 +280,6 @@ class Analysis {
       throw InvalidInput("no wave vector of the sampling carries resolvable energy under the case's "
                          "spectrum (" + c_.describe() + ")");
     }
-  }
-
-  // The same analysis over other frames of the same surface, whose frame 0 is `base`'s (the
-  // gate's two end frames): μ, τ, the waves and frame 0's spectrum are base's, shared rather
-  // than computed again (Ψ over the grid and an FFT: about 7 % of the gate's work at 512²) or
-  // copied (30 MB at 512²). Every scalar the main constructor sets must be copied here too (the
-  // golden reports of GateGolden catch a derived check judged with a default-constructed one).
-  Analysis(const Analysis& base, const FrameSequence& frames)
-      : c_(base.c_), frames_(frames), options_(base.options_), sampling_(base.sampling_),
-        count_(base.count_), log2n_(base.log2n_), u_(base.u_), scale_(base.scale_),
-        floor_(base.floor_), mean_square0_(base.mean_square0_),
-        spectral_energy0_(base.spectral_energy0_), threads_(base.threads_), shared_(base.shared_) {
-    for (const auto& frame : frames.frames) times_.push_back(frame.time);
   }
 
   const OceanCase& ocean_case() const { return c_; }
@@ -309,7 +311,26 @@ class Analysis {
       const std::size_t frames = times_.size(), waves = shared_->resolved.size();
       series_.assign(waves, frames);
       spectral_energies_.assign(frames, spectral_energy0_);
+      frame_strays_.assign(frames, FrameStray{});
       const double scale = 1.0 / double(count_);
+      const bool grid = !sampling_.is_lattice();
+      auto tally_stray = [&](std::size_t f, auto coefficient) {
+        FrameStray& s = frame_strays_[f];
+        for (std::size_t e : shared_->stray) {
+          const double power = std::norm(coefficient(e));
+          s.energy += power;
+          if (power > s.largest) {
+            s.largest = power;
+            s.largest_at = e;
+          }
+          if (grid) {
+            const auto [n, m] = sampling_.wave_index(e);
+            if (std::abs(n) >= sampling_.grid().nx / 4 && std::abs(m) >= sampling_.grid().ny / 4) s.corner += power;
+          }
+        }
+        s.mean_level = coefficient(0).real();
+        s.mean_square = double(spectral_energies_[f]) / double(count_);
+      };
       constexpr std::size_t kFramesPerTask = 4;
       detail::run_tasks((frames + kFramesPerTask - 1) / kFramesPerTask, threads_, [&](std::size_t task) {
         const std::size_t first = task * kFramesPerTask, last = std::min(frames, first + kFramesPerTask);
@@ -319,11 +340,13 @@ class Analysis {
           Complex* values = block.data() + (f - first) * waves;
           if (f == 0) {
             for (std::size_t w = 0; w < waves; ++w) values[w] = shared_->spectrum0[shared_->resolved[w].index];
+            tally_stray(f, [&](std::size_t e) { return shared_->spectrum0[e]; });
             continue;
           }
           const auto transform =
               analysis_transform(frames_.field(int(f), Field::height), sampling_, &spectral_energies_[f]);
           for (std::size_t w = 0; w < waves; ++w) values[w] = transform[shared_->resolved[w].index] * scale;
+          tally_stray(f, [&](std::size_t e) { return transform[e] * scale; });
         }
         for (std::size_t w = 0; w < waves; ++w) {
           for (std::size_t f = first; f < last; ++f) series_.at(w, f) = block[(f - first) * waves + w];
@@ -333,6 +356,14 @@ class Analysis {
     });
     return series_;
   }
+
+  // Each frame's energy where the case puts none, made with the wave series.
+  const std::vector<FrameStray>& frame_strays() const {
+    wave_series();
+    return frame_strays_;
+  }
+  // The entries (FFT order) where the case puts no resolvable energy.
+  const std::vector<std::size_t>& stray_entries() const { return shared_->stray; }
 
   // Σ|X(k)|²/N of each frame's height transform X (field_spectrum's `energy`), made with the
   // wave series.
@@ -395,15 +426,16 @@ class Analysis {
   long double spectral_energy0_ = 0;
   int threads_ = 1;
   std::vector<double> times_;
-  // What the frames' analysis over other frames of the same surface shares with it.
   struct Shared {
     std::vector<double> mu, tau;
     std::vector<Complex> spectrum0;
     std::vector<Wave> resolved, half_plane;
+    std::vector<std::size_t> stray;
   };
   std::shared_ptr<Shared> shared_ = std::make_shared<Shared>();
   mutable WaveSeries series_;
   mutable std::vector<long double> spectral_energies_;
+  mutable std::vector<FrameStray> frame_strays_;
   mutable std::vector<WaveFit> fits_;
   mutable std::string misdeclared_table_;
   mutable std::once_flag series_once_, fits_once_, table_once_;

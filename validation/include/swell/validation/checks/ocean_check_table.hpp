@@ -24,8 +24,6 @@ struct OceanCheckRow {
   // Rank by cost, 1 the longest: the gate starts the longest first (longest processing time
   // first keeps two threads within the shortest check of each other).
   int cost_rank = 0;
-  // Judges the first and last frames alone (every field), not every frame's height.
-  bool ends_only = false;
   std::vector<SkipReason> skipped_when;  // why it (or one of its parts) may not run
 };
 

@@ -69,22 +69,18 @@ std::vector<double> expected_travelling_power(const reference::OceanCase& ocean_
                                               int threads = 1);
 
 // Groups of checks run concurrently on `threads` threads (the gate): every group judges one
-// analysis of `frames`, made once; a group marked ends_only judges `ends` instead (the first and
-// last frames with every field; its analysis is copied from the first when both have the same
-// frame 0). Reports in the groups' order (with a free scale the first begins with the fitted
+// analysis of `frames`, made once. Reports in the groups' order (with a free scale the first begins with the fitted
 // scale); the first group's error is thrown. `travelling_power`: τ(k) of the case on its samples
 // (expected_travelling_power(ocean_case, threads)), which the gate evaluates once before reading
 // for its sampling rule and hands to the analysis.
 struct OceanCheckGroup {
   std::vector<std::string> checks;
-  bool ends_only = false;
 };
 // One group per check, the longest first (ocean_check_table.hpp's cost ranks), for whichever
 // thread is free: what the gate runs.
 std::vector<OceanCheckGroup> ocean_check_groups_longest_first();
 std::vector<OceanCheckReport> run_ocean_check_groups(const reference::OceanCase& ocean_case,
                                                      const reference::FrameSequence& frames,
-                                                     const reference::FrameSequence& ends,
                                                      const OceanCheckOptions& options,
                                                      const std::vector<OceanCheckGroup>& groups,
                                                      std::vector<double> travelling_power,
