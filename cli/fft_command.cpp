@@ -95,6 +95,11 @@ int run_fft(const FftOptions& o) {
   // What the flags and the input's dtype ask for.
   impls::TransformSpec spec;
   spec.ny = static_cast<int>(rows);
+  if (input.dtype == NpyArray::Dtype::f2) {
+    throw InvalidInput(fmt::format("{}: '<f2' (float16): swell fft transforms float32 and float64 "
+                                   "arrays (convert with a.astype('<f4'))",
+                                   o.in));
+  }
   spec.precision = input.dtype == NpyArray::Dtype::f4 || input.dtype == NpyArray::Dtype::c8
                        ? Precision::f32
                        : Precision::f64;

@@ -84,6 +84,15 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
         summary.k_max));
   }
 
+  if (frames.storage_roundoff > 0) {
+    report.notes.push_back(fmt::format(
+        "frames stored in half precision ({}): the exact checks allow each stored value an error "
+        "of one ulp ({:.3g} of itself, rounding toward zero included) on top of float32 arithmetic, "
+        "and no more",
+        case_file.input.precision == "half" ? "declared by [input] precision"
+                                            : "their every value is a half",
+        frames.storage_roundoff));
+  }
   // Bad input (a grid that does not match, no height field) is thrown by the analysis.
   auto parts = run_ocean_check_groups(case_file.ocean, frames, check_options,
                                       ocean_check_groups_longest_first(),

@@ -410,6 +410,12 @@ void read_input_keys(const Reporter& report, const Section& input,
       }
       out.raw_type = *raw_type;
     }
+    if (auto precision = input.string("precision")) {
+      if (*precision != "half" && *precision != "float" && *precision != "double") {
+        input.fail("precision", "must be \"half\", \"float\" or \"double\" (got \"" + *precision + "\")");
+      }
+      out.precision = *precision;
+    }
     if (input.present() && out.channels.empty() && !(frames_optional && out.files.empty())) {
       std::vector<std::string> fields;
       for (Field field : reference::kAllFields) fields.push_back(reference::field_name(field));
@@ -422,7 +428,7 @@ void read_input_keys(const Reporter& report, const Section& input,
 }
 
 std::vector<std::string> input_keys() {
-  std::vector<std::string> valid = {"files", "raw_type", "value_range"};
+  std::vector<std::string> valid = {"files", "raw_type", "value_range", "precision"};
   for (Field field : reference::kAllFields) valid.push_back(reference::field_name(field));
   return valid;
 }
@@ -1200,6 +1206,7 @@ void write_input(std::string& out, const std::string& header, const InputSpec& i
       out += fmt::format("{} = {}\n", reference::field_name(field), toml_string(channel));
     }
     if (input.raw_type != "float32") out += fmt::format("raw_type = {}\n", toml_string(input.raw_type));
+    if (!input.precision.empty()) out += fmt::format("precision = {}\n", toml_string(input.precision));
     if (!input.value_ranges.empty()) {
       const IntegerRange first = input.value_ranges.begin()->second;
       bool one_for_all = input.value_ranges.size() == input.channels.size();

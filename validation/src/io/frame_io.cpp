@@ -3,6 +3,8 @@
 // Readers check everything against the case and name the file.
 #include "swell/validation/io/frame_io.hpp"
 
+#include "swell/validation/io/half.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -36,6 +38,7 @@ using reference::Grid;
 using detail::fail_non_finite;
 using detail::kDoubleRoundoff;
 using detail::kFloatRoundoff;
+using detail::kHalfRoundoff;
 
 enum class StoredFormat { exr, tiff, png, npy, raw };
 
@@ -181,6 +184,10 @@ double read_npy_field(const fs::path& path, const Grid& grid, Field field, Field
     }
   };
   switch (array.dtype) {
+    case NpyArray::Dtype::f2:
+      real = half_values(array);
+      roundoff = kHalfRoundoff;
+      break;
     case NpyArray::Dtype::f4: {
       const auto values = array.values<float>();
       real.assign(values.begin(), values.end());
@@ -274,6 +281,57 @@ NpyArray npy_of(const Grid& grid, const std::vector<double>& real, const std::ve
   }
   std::vector<Real> values(real.begin(), real.end());
   return NpyArray::from_values(shape, values);
+}
+
+// The stored precision of frames read with the largest unit roundoff `stored` (a half's 2⁻¹¹
+// where a channel or array is half, a float's or a double's, or an integer quantization's),
+// declared by [input] precision or detected: float frames whose every value is a half were
+// stored in half (a GPU texture widened to float on the way out). Half frames are taken as
+// computed in float32 (unit_roundoff 2⁻²⁴) and stored to within one ulp (storage_roundoff 2⁻¹⁰,
+// docs/conventions.md §storage precision).
+void set_storage_precision(FrameSequence& sequence, double stored, const std::string& declared,
+                           const std::string& origin) {
+  const bool floating = stored == kHalfRoundoff || stored == kFloatRoundoff || stored == kDoubleRoundoff;
+  auto all_halves = [&] {
+    for (const auto& frame : sequence.frames) {
+      for (const auto* part : {&frame.fields, &frame.imaginary}) {
+        for (const auto& [field, values] : *part) {
+          if (!std::all_of(values.begin(), values.end(), is_half_value)) return false;
+        }
+      }
+    }
+    return true;
+  };
+  auto store_as_half = [&] {
+    sequence.unit_roundoff = kFloatRoundoff;
+    sequence.storage_roundoff = kHalfUlp;
+  };
+  sequence.unit_roundoff = stored;
+  sequence.storage_roundoff = 0;
+  if (declared.empty()) {
+    if (stored == kHalfRoundoff || (stored == kFloatRoundoff && all_halves())) store_as_half();
+    return;
+  }
+  if (!floating) {
+    throw InvalidInput(fmt::format("{}: [input] precision = \"{}\" applies to floating-point "
+                                   "frames; these are stored as integers (their value_range sets "
+                                   "their rounding)",
+                                   origin, declared));
+  }
+  const double declared_roundoff = declared == "half"    ? kHalfRoundoff
+                                   : declared == "float" ? kFloatRoundoff
+                                                         : kDoubleRoundoff;
+  if (declared_roundoff < stored) {
+    throw InvalidInput(fmt::format("{}: [input] precision = \"{}\", but the frames are stored in {}, "
+                                   "which cannot hold {} values",
+                                   origin, declared,
+                                   stored == kHalfRoundoff ? "half" : "float", declared));
+  }
+  if (declared == "half") {
+    store_as_half();
+  } else {
+    sequence.unit_roundoff = declared_roundoff;
+  }
 }
 
 }  // namespace
@@ -549,7 +607,7 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
                                      next.string(), ocean.frames, ocean.frames));
     }
   }
-  sequence.unit_roundoff = roundoff;
+  set_storage_precision(sequence, roundoff, input.precision, origin);
   return sequence;
 }
 

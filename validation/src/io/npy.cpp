@@ -1,5 +1,7 @@
 #include "swell/validation/io/npy.hpp"
 
+#include "swell/validation/io/half.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -31,7 +33,8 @@ constexpr std::size_t kGrowthAxisMaxDigits = 21;
 constexpr std::size_t kMaxHeaderBytes = 1 << 20;
 constexpr int kMaxNesting = 16;  // of brackets in a header; a real one nests 1 deep
 
-const char* const kSupported = "'<f4' (float32), '<f8' (float64), '<c8' (complex64), '<c16' (complex128)";
+const char* const kSupported =
+    "'<f2' (float16), '<f4' (float32), '<f8' (float64), '<c8' (complex64), '<c16' (complex128)";
 
 [[noreturn]] void fail(const fs::path& path, const std::string& problem) {
   throw InvalidInput(path.string() + ": " + problem);
@@ -294,12 +297,13 @@ Dtype dtype_from_descr(const fs::path& path, const Literal& descr) {
     fail(path, "'descr' must be a dtype string such as '<f8', got " + describe(descr));
   }
   const std::string& d = descr.text;
+  if (d == "<f2") return Dtype::f2;
   if (d == "<f4") return Dtype::f4;
   if (d == "<f8") return Dtype::f8;
   if (d == "<c8") return Dtype::c8;
   if (d == "<c16") return Dtype::c16;
   const std::string type = d.empty() ? "" : d.substr(1);
-  const bool ours = type == "f4" || type == "f8" || type == "c8" || type == "c16";
+  const bool ours = type == "f2" || type == "f4" || type == "f8" || type == "c8" || type == "c16";
   if (!d.empty() && d[0] == '>') {
     fail(path, "big-endian dtype '" + d + "' is not supported; save little-endian data " +
                    (ours ? "(numpy: a.astype('<" + type + "'))" : std::string("")) +
@@ -368,6 +372,7 @@ std::uint64_t little_endian(const unsigned char* bytes, std::size_t n) {
 
 std::size_t itemsize(Dtype dtype) {
   switch (dtype) {
+    case Dtype::f2: return 2;
     case Dtype::f4: return 4;
     case Dtype::f8: return 8;
     case Dtype::c8: return 8;
@@ -378,6 +383,7 @@ std::size_t itemsize(Dtype dtype) {
 
 std::string to_descr(Dtype dtype) {
   switch (dtype) {
+    case Dtype::f2: return "<f2";
     case Dtype::f4: return "<f4";
     case Dtype::f8: return "<f8";
     case Dtype::c8: return "<c8";
@@ -438,6 +444,23 @@ std::size_t NpyArray::elements() const {
 }
 
 std::size_t NpyArray::itemsize() const { return validation::itemsize(dtype); }
+
+std::vector<double> half_values(const NpyArray& array) {
+  if (array.dtype != Dtype::f2) {
+    throw InvalidInput("npy array holds '" + to_descr(array.dtype) + "', asked for '<f2'");
+  }
+  if (array.data.size() != array.elements() * 2) {
+    throw InvalidInput("npy array of shape " + shape_string(array.shape) + " holds " +
+                       std::to_string(array.data.size()) + " bytes, expected " +
+                       std::to_string(array.elements() * 2));
+  }
+  std::vector<double> out(array.elements());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const auto bits = std::uint16_t(array.data[2 * i] | (std::uint16_t(array.data[2 * i + 1]) << 8));
+    out[i] = half_bits_to_double(bits);
+  }
+  return out;
+}
 
 // ------------------------------------------------------------------ reading
 

@@ -19,6 +19,8 @@
 #include "swell/validation/gate/gate.hpp"
 #include "swell/validation/checks/ocean_checks.hpp"
 #include "gate/gate_cases.hpp"
+#include "half_rounding.hpp"
+#include "swell/validation/stats/periodogram.hpp"
 #include "test_engine.hpp"
 
 namespace {
@@ -322,6 +324,90 @@ TEST(Degenerate, ChoppinessZeroMeansNoDisplacement) {
   EXPECT_NE(result_of(wrong, "derived.jacobian").reason.find("λ = 0 declares no displacement"), std::string::npos);
 }
 
+// ------------------------------------------------------------------ half precision
+
+// The catalogue's frames stored in half (toward zero, and to nearest) pass; no check blames the
+// rounding on the engine. (A right engine's calibration in half: GateCalibration below.)
+TEST(HalfPrecision, TheRightEnginePassesInHalf) {
+  for (bool toward_zero : {true, false}) {
+    const OceanCase c = catalogue_case();
+    auto frames = swell::test::render_surface(c);
+    swell::test::store_in_half(frames, toward_zero);
+    const auto report = swell::validation::run_gate(as_case_file(c), frames, GateOptions{});
+    EXPECT_TRUE(report.passed()) << (toward_zero ? "toward zero" : "to nearest") << describe(report);
+    bool noted = false;
+    for (const auto& note : report.notes) noted |= note.find("half precision") != std::string::npos;
+    EXPECT_TRUE(noted);
+  }
+}
+
+// Real errors about 10× the half floor still fail: ω 6 % off at every wave (g × 1.06², deep
+// water), a Nyquist leak of 5.5e-3 of a displacement's rms, slopes of a normal map divided by
+// 1 + |∂Dx/∂x| — each named by its check.
+TEST(HalfPrecision, ErrorsTenTimesTheFloorFail) {
+  const OceanCase c = catalogue_case();
+  auto judge = [&](swell::reference::FrameSequence frames) {
+    swell::test::store_in_half(frames, true);
+    return swell::validation::run_gate(as_case_file(c), frames, GateOptions{});
+  };
+  OceanCase fast = c;
+  fast.gravity = c.gravity * 1.06 * 1.06;
+  const auto dispersion = result_of(judge(swell::test::render_surface(fast)), "dispersion.residual");
+  EXPECT_FALSE(dispersion.passed) << dispersion.reason;
+  EXPECT_NE(dispersion.reason.find("ω is 1.06"), std::string::npos) << dispersion.reason;
+
+  auto leaking = swell::test::render_surface(c);
+  const double rms = rms_of(leaking, swell::reference::Field::disp_y);
+  for (auto& frame : leaking.frames) fill_nyquist(frame.fields[swell::reference::Field::disp_y], c.grid, 5.5e-3 / std::numbers::sqrt2 * rms);
+  const auto leak = result_of(judge(leaking), "derived.disp_y");
+  EXPECT_FALSE(leak.passed) << leak.reason;
+  EXPECT_NE(leak.reason.find("on the Nyquist row and column"), std::string::npos) << leak.reason;
+
+  auto normal_map = swell::test::render_surface(c);
+  for (auto& frame : normal_map.frames) {
+    // ∂Dx/∂x from the displacement's spectrum: i kx × its coefficients.
+    const auto& dx = frame.fields.at(swell::reference::Field::disp_x);
+    auto spectrum = swell::validation::field_spectrum(dx, c.grid);
+    for (std::size_t e = 0; e < spectrum.size(); ++e) {
+      const int n = int(e % std::size_t(c.grid.nx));
+      const int signed_n = n < c.grid.nx / 2 ? n : n - c.grid.nx;
+      spectrum[e] *= std::complex<double>(0, signed_n * c.grid.dkx());
+    }
+    const auto dxx = swell::validation::field_from_spectrum(spectrum, c.grid);
+    auto& slope = frame.fields.at(swell::reference::Field::slope_x);
+    for (std::size_t p = 0; p < slope.size(); ++p) slope[p] /= 1 + std::abs(dxx[p]);
+  }
+  const auto slopes = result_of(judge(normal_map), "derived.slope_x");
+  EXPECT_FALSE(slopes.passed) << slopes.reason;
+  for (const auto& r : {dispersion, leak, slopes}) {
+    std::cout << "[ half ] " << r.check << " " << r.measured << " > " << r.tolerance << ": " << r.reason << "\n";
+  }
+}
+
+// Half frames read from files: float32 EXR whose every value is a half is detected as half and
+// judged as such; the same frames declared `precision = "float"` would be judged at float32's
+// floor, which their rounding exceeds.
+TEST(HalfPrecision, FloatFilesOfHalvesAreDetectedAndJudgedAsHalf) {
+  const OceanCase c = catalogue_case();
+  auto frames = swell::test::render_surface(c);
+  swell::test::store_in_half(frames, true);
+  const auto directory = std::filesystem::temp_directory_path() /
+                         ("swell_half_gate_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(directory);
+  CaseFile file = as_case_file(c);
+  swell::validation::FrameWriteOptions write;
+  write.format = swell::validation::FrameFormat::exr;
+  file.input = swell::validation::write_frames(directory, frames, write);
+  swell::validation::write_case_file(directory / "case.toml", file);
+  const auto detected = swell::validation::run_gate(directory / "case.toml", GateOptions{});
+  EXPECT_TRUE(detected.passed()) << describe(detected);
+  file.input.precision = "float";
+  file.directory = directory;
+  const auto declared = swell::validation::run_gate(file, GateOptions{});
+  EXPECT_FALSE(declared.passed());
+  std::filesystem::remove_all(directory);
+}
+
 // The right engine of both catalogue seas passes the gate.
 TEST(Catalogue, TheRightEnginePasses) {
   for (const OceanCase& c : {catalogue_case(), shallow_case()}) {
@@ -341,22 +427,28 @@ TEST(GateCalibration, FamilyWiseFalseAlarmRateOverTwoHundredSeeds) {
   base.spreading.numbers["s"] = 10.0;
   const int seeds = 200;
   for (double alpha : {0.05, 1e-3}) {
-    int failed = 0;
+    int failed = 0, failed_half = 0;
     for (int s = 0; s < seeds; ++s) {
       OceanCase c = base;
       c.seed = 500000 + s;
-      const auto frames = swell::impls::Synthesizer(c, {"fftw", swell::impls::Precision::f32}).frames();
+      auto frames = swell::impls::Synthesizer(c, {"fftw", swell::impls::Precision::f32}).frames();
       GateOptions options;
       options.alpha = alpha;
       const auto report = swell::validation::run_gate(as_case_file(c), frames, options);
       EXPECT_NEAR(report.alpha_per_check * report.statistical_checks, alpha, 1e-12 * alpha);
       failed += !report.passed();
+      // The same frames stored in half, toward zero (GPU drivers may truncate).
+      swell::test::store_in_half(frames, true);
+      const auto half = swell::validation::run_gate(as_case_file(c), frames, options);
+      failed_half += !half.passed();
+      if (!half.passed() && report.passed()) std::cout << "[ calibration ] half only:" << describe(half) << "\n";
     }
     const boost::math::binomial_distribution<double> law(seeds, alpha);
     const int bound = int(boost::math::quantile(boost::math::complement(law, 1e-3)));
     std::cout << "[ calibration ] gate at α = " << alpha << ": " << failed << " of " << seeds
-              << " right engines failed (bound " << bound << ")\n";
+              << " right engines failed, " << failed_half << " in half (bound " << bound << ")\n";
     EXPECT_LE(failed, bound) << "α = " << alpha;
+    EXPECT_LE(failed_half, bound) << "α = " << alpha << ", half";
   }
 }
 

@@ -45,9 +45,14 @@ struct FrameSequence {
   std::shared_ptr<const RankOneLattice> lattice;
   Sampling sampling() const { return lattice ? Sampling(lattice) : Sampling(grid); }
   std::vector<FieldFrame> frames;
-  // Unit roundoff of the numbers as stored (2⁻²⁴ for float32, 2⁻⁵³ for float64, 2⁻¹¹ for
-  // half): the floor below which the checks cannot resolve anything.
+  // Unit roundoff of the arithmetic that made the numbers (2⁻²⁴ for float32 and for half frames,
+  // which engines compute in float32; 2⁻⁵³ for float64): what a transform amplifies by log₂N.
   double unit_roundoff = 0x1p-53;
+  // Where the stored numbers are coarser than that arithmetic (half): the largest relative error
+  // of one stored value, 2⁻¹⁰ (one ulp: drivers may truncate toward zero). 0 where
+  // unit_roundoff covers the storage too. Not amplified by any transform: its energy is at most
+  // storage_roundoff² of the field's (docs/conventions.md, storage precision).
+  double storage_roundoff = 0;
 
   bool has(Field field) const;  // present in every frame
   const std::vector<double>& field(int frame, Field field) const;  // throws InvalidInput

@@ -192,6 +192,7 @@ class Analysis {
     count_ = sampling_.size();
     log2n_ = std::max(1.0, std::log2(double(count_)));
     u_ = std::max(frames.unit_roundoff, kFp64Roundoff);
+    storage_ = frames.storage_roundoff;
     for (const auto& frame : frames.frames) times_.push_back(frame.time);
 
     if (travelling.size() != sampling_.size()) {
@@ -223,6 +224,10 @@ class Analysis {
     // Rounding of the stored numbers moves a resolved wave vector's periodogram by < 10⁻⁶
     // relative — far below any sampling effect the checks test.
     floor_ = resolution_floor(u_, mean_square0_, count_);
+    // Half storage: its rounding, at most storage_² of the energy, white over the wave vectors,
+    // moves a resolved one's periodogram by < 10⁻⁴ relative — far below what a statistical check
+    // sees even summed over 10⁶ wave vectors (relative 10⁻³).
+    floor_ = std::max(floor_, 1e4 * storage_ * storage_ * mean_square0_ / double(count_));
 
     const double dkx = sampling_.dkx(), dky = sampling_.dky();
     // Room for every wave vector of the half plane at once (about half the samples): grown by
@@ -289,6 +294,9 @@ class Analysis {
   std::size_t count() const { return count_; }
   double log2n() const { return log2n_; }
   double unit_roundoff() const { return u_; }
+  // The stored values' own relative error where coarser than the arithmetic (half: 2⁻¹⁰), else
+  // 0 (FrameSequence::storage_roundoff).
+  double storage_roundoff() const { return storage_; }
   std::size_t sample_count() const { return count_; }
   double scale() const { return scale_; }
   const std::vector<double>& times() const { return times_; }
@@ -422,7 +430,7 @@ class Analysis {
   OceanCheckOptions options_;
   Sampling sampling_;
   std::size_t count_ = 0;
-  double log2n_ = 1, u_ = kFp64Roundoff, scale_ = 1, floor_ = 0, mean_square0_ = 0;
+  double log2n_ = 1, u_ = kFp64Roundoff, storage_ = 0, scale_ = 1, floor_ = 0, mean_square0_ = 0;
   long double spectral_energy0_ = 0;
   int threads_ = 1;
   std::vector<double> times_;

@@ -298,8 +298,15 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
     energy += f.energy;
   }
   const double fraction = residual / std::max(energy, 1e-300);
-  // Rounding alone leaves at most (u log2 N)² of the energy; allow 64× that.
-  const double bound = std::pow(rounding_budget(kCompoundRounding, a.unit_roundoff(), a.log2n()), 2);
+  // Rounding alone leaves at most (u log2 N)² of the energy; allow 64× that. Half storage adds
+  // an error of at most s² of each frame's energy (s = 2⁻¹⁰), which the fit cannot absorb: at
+  // most Σ mean h² s² of what the fits see, allowed 4× (its energy is bounded, not estimated;
+  // the fits see about half of each frame's energy, the half plane).
+  double frames_energy = 0;
+  for (const FrameStray& s : a.frame_strays()) frames_energy += s.mean_square;
+  const double s = a.storage_roundoff();
+  const double bound = std::pow(rounding_budget(kCompoundRounding, a.unit_roundoff(), a.log2n()), 2) +
+                       4 * s * s * frames_energy / std::max(energy, 1e-300);
   Results out;
 
   // ω per wave vector, for the most energetic wave vectors whose ω is below the frames'
@@ -327,7 +334,8 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
   // energy lies above it.
   const double frames = double(a.times().size());
   const double span = a.times().back() - a.times().front();
-  const double noise = a.unit_roundoff() * a.unit_roundoff() * a.mean_square0() / double(a.sample_count());
+  const double stored = std::max(a.unit_roundoff(), a.storage_roundoff());
+  const double noise = stored * stored * a.mean_square0() / double(a.sample_count());
   for (const WaveFit* f : strongest) {
     const std::size_t w = std::size_t(f->wave - a.waves().data());
     const double omega = best_omega(f->wave->omega, max_omega, a.times(), series[w]);

@@ -70,7 +70,9 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
       weights.empty() ? 0.0 : stats::WeightedExponentialSum(weights).quantile(1 - alpha / frames);
   // The field's own rounding (u per value, amplified by log2 N through a transform) may all
   // land there.
-  const double rounding_share = std::pow(rounding_budget(kTransformRounding, a.unit_roundoff(), a.log2n()), 2);
+  // land there; and all of the storage's (half: at most storage² of the energy).
+  const double rounding_share = std::pow(rounding_budget(kTransformRounding, a.unit_roundoff(), a.log2n()), 2) +
+                                a.storage_roundoff() * a.storage_roundoff();
   auto bound_of = [&](const FrameStray& s) { return sampling_bound + rounding_share * s.mean_square; };
   std::size_t worst = 0, failing = 0, heaving = 0;
   for (std::size_t f = 0; f < strays.size(); ++f) {

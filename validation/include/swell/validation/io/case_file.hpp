@@ -44,6 +44,9 @@ struct InputSpec {
   std::string files;  // printf pattern with one integer (the frame), relative to the case file
   std::map<reference::Field, std::string> channels;
   std::string raw_type = "float32";  // element type of .raw files: float32 | float64
+  // The precision the frames were stored in: "half", "float" or "double"; empty: the files'
+  // own type, or half where every value of float frames is a half (frame_io.hpp).
+  std::string precision;
   // Per field, for frames stored as 8- or 16-bit integers (PNG, integer TIFF); every integer
   // channel needs one and a float channel must have none.
   std::map<reference::Field, IntegerRange> value_ranges;

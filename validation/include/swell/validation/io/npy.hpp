@@ -7,7 +7,8 @@
 //           padded with spaces and ended by '\n' so that the data starts on a 64-byte boundary
 //   data:   the elements in C order, raw little-endian bytes
 //
-// Supported element types are the four the transforms use: '<f4', '<f8', '<c8', '<c16'.
+// Supported element types are the four the transforms use, '<f4', '<f8', '<c8', '<c16', and
+// '<f2' (float16: half frames, read only).
 // Fortran-ordered files (fortran_order: True) are read and rearranged into C order; swell writes
 // C order. Anything else — big-endian data, other dtypes, malformed or truncated files —
 // throws swell::InvalidInput whose message starts with the file name and names the problem.
@@ -34,14 +35,14 @@ static_assert(std::endian::native == std::endian::little,
               "npy I/O reinterprets little-endian bytes in place");
 
 struct NpyArray {
-  enum class Dtype { f4, f8, c8, c16 };  // float32, float64, complex64, complex128
+  enum class Dtype { f2, f4, f8, c8, c16 };  // float16, float32, float64, complex64, complex128
 
   Dtype dtype = Dtype::f8;
   std::vector<std::size_t> shape;      // C order; empty for a 0-d (scalar) array
   std::vector<unsigned char> data;     // elements() · itemsize() raw little-endian bytes
 
   std::size_t elements() const;        // product of shape (1 for rank 0)
-  std::size_t itemsize() const;        // bytes per element: 4, 8, 8, 16
+  std::size_t itemsize() const;        // bytes per element: 2, 4, 8, 8, 16
   bool is_complex() const { return dtype == Dtype::c8 || dtype == Dtype::c16; }
 
   // A typed view of the data: T is float, double, std::complex<float> or std::complex<double>
@@ -56,8 +57,10 @@ struct NpyArray {
   }
 };
 
+// The values of a float16 array ('<f2'), decoded exactly (io/half.hpp).
+std::vector<double> half_values(const NpyArray& array);
 std::size_t itemsize(NpyArray::Dtype dtype);
-std::string to_descr(NpyArray::Dtype dtype);  // "<f4", "<f8", "<c8", "<c16"
+std::string to_descr(NpyArray::Dtype dtype);  // "<f2", "<f4", "<f8", "<c8", "<c16"
 std::string shape_string(const std::vector<std::size_t>& shape);  // "(3,)", "(2, 3)", "()"
 
 template <typename T>
