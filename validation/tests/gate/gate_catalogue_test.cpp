@@ -324,6 +324,86 @@ TEST(Degenerate, ChoppinessZeroMeansNoDisplacement) {
   EXPECT_NE(result_of(wrong, "derived.jacobian").reason.find("λ = 0 declares no displacement"), std::string::npos);
 }
 
+// ------------------------------------------------------------------ one cause, once
+
+// Every linear field × √factor (the energy × factor); the Jacobian, which is not linear in them,
+// dropped.
+void scale_energy(swell::reference::FrameSequence& frames, double factor) {
+  for (auto& frame : frames.frames) {
+    frame.fields.erase(swell::reference::Field::jacobian);
+    for (auto& [field, values] : frame.fields) {
+      for (double& v : values) v *= std::sqrt(factor);
+    }
+  }
+}
+
+// The Godot ocean's energy × 8 (2 × 2 × 2) on a sea whose peak sits at 1.2 Δk, where a handful
+// of waves carry the energy and the total's ratio is noisy: the shape check names the whole
+// factor and its decomposition from the rings' median; energy, where it fails, names the same;
+// the scale-dependent checks (travelling, Gaussian amplitudes) judge what is theirs and pass.
+TEST(OneCause, EnergyTimesEightIsNamedWholeWhereAHandfulOfWavesCarryTheSea) {
+  OceanCase c = catalogue_case();
+  c.spectrum.numbers["tp"] = 20.0;  // kp = ωp²/g ≈ 1.3 Δk on 800 m
+  for (unsigned seed : {7u, 8u, 9u}) {
+    c.seed = seed;
+    auto frames = swell::test::render_surface(c);
+    scale_energy(frames, 8.0);
+    const auto report = swell::validation::run_gate(as_case_file(c), frames, GateOptions{});
+    const auto shape = result_of(report, "spectrum.shape");
+    EXPECT_FALSE(shape.passed) << shape.reason;
+    EXPECT_NE(shape.reason.find("× 8 = 2 × 2 × 2"), std::string::npos) << shape.reason;
+    EXPECT_NE(shape.reason.find("the shape is the case's, so this failure is the scale's"), std::string::npos)
+        << shape.reason;
+    const auto energy = result_of(report, "energy");
+    if (!energy.passed) EXPECT_NE(energy.reason.find("× 8 = 2 × 2 × 2"), std::string::npos) << energy.reason;
+    EXPECT_TRUE(result_of(report, "direction.travelling").passed) << result_of(report, "direction.travelling").reason;
+    EXPECT_TRUE(result_of(report, "statistics.gaussian_amplitudes").passed)
+        << result_of(report, "statistics.gaussian_amplitudes").reason;
+    std::cout << "[ one cause ] seed " << seed << ": shape: " << shape.reason << "\n[ one cause ] energy: "
+              << energy.reason << "\n";
+  }
+}
+
+// On the catalogue sea (peak at 8 Δk) the total measures × 8 itself and energy names it.
+TEST(OneCause, EnergyTimesEightOnAWideSeaIsNamedByEnergy) {
+  const OceanCase c = catalogue_case();
+  auto frames = swell::test::render_surface(c);
+  scale_energy(frames, 8.0);
+  const auto report = swell::validation::run_gate(as_case_file(c), frames, GateOptions{});
+  const auto energy = result_of(report, "energy");
+  EXPECT_FALSE(energy.passed);
+  EXPECT_NE(energy.reason.find("× 8 = 2 × 2 × 2"), std::string::npos) << energy.reason;
+  EXPECT_EQ(energy.reason.find("without Δkx Δky"), std::string::npos) << energy.reason;
+  EXPECT_TRUE(result_of(report, "direction.travelling").passed);
+}
+
+// An engine that mixes an undeclared isotropic part into its spreading (30 % of the energy) has
+// complex Gaussian amplitudes: gaussian_amplitudes, where it fails against the case's μ, says the
+// failure follows from the spreading, not the noise; the directional check names the spreading.
+TEST(OneCause, AnUndeclaredSpreadingMixIsNotCalledNonGaussian) {
+  const OceanCase c = catalogue_case();
+  OceanCase isotropic = c;
+  isotropic.spreading.numbers["s"] = 0.02;  // nearly flat in θ
+  isotropic.seed = c.seed + 1000;
+  auto frames = swell::test::render_surface(c);
+  const auto other = swell::test::render_surface(isotropic);
+  for (std::size_t f = 0; f < frames.frames.size(); ++f) {
+    for (auto& [field, values] : frames.frames[f].fields) {
+      const auto& add = other.frames[f].fields.at(field);
+      for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::sqrt(0.7) * values[i] + std::sqrt(0.3) * add[i];
+    }
+    frames.frames[f].fields.erase(swell::reference::Field::jacobian);
+  }
+  const auto report = swell::validation::run_gate(as_case_file(c), frames, GateOptions{});
+  EXPECT_FALSE(report.passed());
+  const auto gaussian = result_of(report, "statistics.gaussian_amplitudes");
+  if (!gaussian.passed) {
+    EXPECT_NE(gaussian.reason.find("they are complex Gaussian"), std::string::npos) << gaussian.reason;
+  }
+  EXPECT_FALSE(result_of(report, "direction.distribution").passed) << describe(report);
+  std::cout << "[ one cause ] mix: " << gaussian.reason << "\n";
+}
+
 // ------------------------------------------------------------------ half precision
 
 // The catalogue's frames stored in half (toward zero, and to nearest) pass; no check blames the

@@ -46,6 +46,8 @@ RingShape ring_shape(std::vector<NormalizedOrdinate> ordinates) {
                                                 stats::gamma_upper_p(count, sum)));
     p_values.push_back(p);
     const double ratio = sum / count;
+    out.ratios.push_back(ratio);
+    out.counts.push_back(int(count));
     out.low_ratio = std::min(out.low_ratio, ratio);
     out.high_ratio = std::max(out.high_ratio, ratio);
     if (p <= out.worst_p) {

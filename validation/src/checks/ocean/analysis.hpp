@@ -95,6 +95,8 @@ struct RingShape {
   int rings = 0;
   double low_ratio = 1, high_ratio = 1;  // the least and greatest ring mean of u
   double worst_ratio = 1, worst_k = 0, worst_p = 1;
+  std::vector<double> ratios;  // each ring's mean of u, by |k|
+  std::vector<int> counts;     // and its wave vectors
 };
 struct NormalizedOrdinate {
   double k = 0;  // |k|, rad/m
@@ -168,8 +170,27 @@ struct FrameStray {
   double mean_square = 0;  // the frame's mean h², m²
 };
 
+// The level of the frames' spectrum against the case's, read from frame 0's rings of |k| (those
+// of spectrum.shape): the median of the rings' mean I/μ. Each ring's mean is an equal-count
+// average, so a handful of energetic waves near the peak, which make the total energy's ratio
+// noisy, move it no more than any other ring. scale.cpp.
+struct MeasuredLevel {
+  double level = 1;            // the rings' median
+  double low = 1, high = 1;    // its ±3 sd range (the median's sd: 1.2533 σ/√rings)
+  double lowest_ring = 1, highest_ring = 1;
+  int rings = 0;
+  bool uniform = false;        // every ring agrees with one factor (Gamma p ≥ 10⁻³/rings each)
+  // A level the rings resolve and that is not 1.
+  bool off() const { return rings >= 4 && (low > 1 || high < 1); }
+};
+
 class Analysis;
 std::string diagnose_table_declarations(const Analysis& a);
+MeasuredLevel measure_level(const Analysis& a);
+// The cause of an energy factor measured as `ratio` with sampling range [low, high]: the known
+// single causes, and, where the factor is one on every wave (`one_factor`), the convention
+// factors and their products (× 8 = 2 × 2 × 2). Empty when the range holds none.
+std::string name_scale_cause(const Analysis& a, double ratio, double low, double high, bool one_factor);
 
 class Analysis {
  public:
@@ -422,6 +443,12 @@ class Analysis {
     std::call_once(table_once_, [this] { misdeclared_table_ = diagnose_table_declarations(*this); });
     return misdeclared_table_;
   }
+  // The measured level of frame 0's spectrum (MeasuredLevel), made once on first use: the
+  // scale-dependent checks normalize by it, energy and shape name it.
+  const MeasuredLevel& measured_level() const {
+    std::call_once(level_once_, [this] { level_ = measure_level(*this); });
+    return level_;
+  }
   int threads() const { return threads_; }
 
  private:
@@ -446,7 +473,8 @@ class Analysis {
   mutable std::vector<FrameStray> frame_strays_;
   mutable std::vector<WaveFit> fits_;
   mutable std::string misdeclared_table_;
-  mutable std::once_flag series_once_, fits_once_, table_once_;
+  mutable MeasuredLevel level_;
+  mutable std::once_flag series_once_, fits_once_, table_once_, level_once_;
 };
 
 // A failed check's explanation: the misdeclared table's reading where one explains the

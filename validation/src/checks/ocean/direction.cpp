@@ -142,11 +142,15 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
                              "ways (one-sided spreading)"});
     return out;
   }
-  const double z = sum / std::sqrt(double(count));
+  // Normalized by the frames' measured level L (MeasuredLevel): Re(a b) scales with the
+  // spectrum, so a scale error alone would make z ~ N(0, L²); this check judges the pairing.
+  const MeasuredLevel& level = a.measured_level();
+  const double scale = level.rings >= 4 && level.level > 0 ? level.level : 1.0;
+  const double z = sum / (scale * std::sqrt(double(count)));
   const double p_travel = stats::normal_two_sided_p(z);
   out.push_back(statistical_check(
       "direction.travelling", a.subject(), z, 0.0, p_travel, alpha,
-      fmt::format("p ≥ α = {:.1e} (normal, {} wave vectors)", alpha, count),
+      fmt::format("p ≥ α = {:.1e} (normal, {} wave vectors, at the frames' measured level)", alpha, count),
       fmt::format("waves at k and −k independent: z = {:.2f}{}", z,
                   p_travel < alpha ? " — h̃0(k) and h̃0(−k) are correlated (the same random pair "
                                      "reused, or standing waves)"

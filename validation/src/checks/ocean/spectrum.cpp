@@ -18,7 +18,7 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
   }
   std::sort(order.begin(), order.end(), [](const Wave* x, const Wave* y) { return x->k < y->k; });
   const int n = int(order.size());
-  const RingShape shape = ring_shape(std::move(ordinates));
+  const RingShape shape = ring_shape(ordinates);
   const int rings = shape.rings;
   const double p = shape.p;
   // In the engine's terms: a band of |k| carrying twice its energy (two cascades overlapping).
@@ -42,6 +42,23 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
                                "(overlapping cascades?)", doubled);
     }
   }
+  // Every ring off by one factor is a scale error, whose whole factor is named here as energy
+  // names it (energy's own total can miss it where a handful of waves carry the sea); the shape
+  // is then judged again at the measured level, to say whether anything beyond the scale fails.
+  std::string scale_explanation;
+  const MeasuredLevel& level = a.measured_level();
+  if (p < alpha && level.uniform && level.off()) {
+    for (auto& o : ordinates) o.u /= level.level;
+    const RingShape normalized = ring_shape(std::move(ordinates));
+    const std::string cause = name_scale_cause(a, level.level, level.low, level.high, true);
+    scale_explanation = fmt::format(
+        "every ring carries {:.3g}–{:.3g}× the case's energy: one factor on every wave, {:.3g}× (the "
+        "rings' median; Hs × {:.3g}){}; at that level the shape {} (p = {:.2g})",
+        level.lowest_ring, level.highest_ring, level.level, std::sqrt(level.level),
+        cause.empty() ? "" : " — " + cause,
+        normalized.p < alpha ? "differs too" : "is the case's, so this failure is the scale's",
+        normalized.p);
+  }
   Results out;
   out.push_back(statistical_check(
       "spectrum.shape", a.subject(), shape.worst_ratio, 1.0, p, alpha,
@@ -49,7 +66,9 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
       fmt::format("periodogram/model {:.3f}…{:.3f} over {} rings of |k| ({} wave vectors); "
                   "worst ring at k = {:.4g} rad/m: {:.3f} (p = {:.2g}){}",
                   shape.low_ratio, shape.high_ratio, rings, n, shape.worst_k, shape.worst_ratio, shape.worst_p,
-                  p < alpha ? " — " + or_table(a, "the spectrum's shape differs from the case's" + shape_hint) : "")));
+                  p >= alpha                  ? ""
+                  : !scale_explanation.empty() ? " — " + scale_explanation
+                                               : " — " + or_table(a, "the spectrum's shape differs from the case's" + shape_hint))));
 
   // Energy where the case puts (almost) none, in every frame: a fault can live in some frames
   // only (a mean level that oscillates and is zero at frame 0). Each frame's stray energy is a
