@@ -121,7 +121,8 @@ GateReport judge_cascades(const CaseFile& case_file,
   }
   // An additive set's bands are judged from the case alone, whichever frames are given: a set
   // whose bands overlap or leave a gap is judged, and fails here naming every range.
-  if (case_file.relation == reference::CascadeRelation::additive && case_file.cascades.size() >= 2) {
+  if (case_file.relation == reference::CascadeRelation::additive &&
+      case_file.cascades.size() >= 2) {
     report.results.push_back(check_band_sharing(case_file.ocean, case_file.members()));
   }
   append(set_results.set);
