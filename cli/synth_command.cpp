@@ -189,8 +189,17 @@ validation::CaseFile build_case(const SynthOptions& o) {
   // Flags may have changed what the cascades share (the spectrum, and so each band's share of
   // m0): the set's rules again.
   for (std::size_t k = 0; k < c.cascades.size(); ++k) c.cascade_case(k).validate();
+  // A reference set is made as declared only when it is one: an additive set whose bands
+  // overlap or leave a gap has no right frames to make (swell gate judges such a set and names
+  // every range; independent seas that sum are relation = "independent").
   if (c.is_cascade_set() && c.relation == reference::CascadeRelation::additive) {
-    reference::require_bands_share_out(ocean, c.members());
+    try {
+      reference::require_bands_share_out(ocean, c.members());
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("{}; swell synth makes right sets only (swell gate judges "
+                                     "this one)",
+                                     e.what()));
+    }
   }
   return c;
 }

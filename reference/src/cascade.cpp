@@ -28,6 +28,19 @@ long long integer_ratio(double ratio) {
   return r >= 1 && std::abs(ratio - r) <= 1e-9 * r ? static_cast<long long>(r) : 0;
 }
 
+// The |k| where grid g holds whole rings: from its Δk to its Nyquist (its corners beyond hold a
+// ring only in part).
+double grid_lowest(const Grid& g) { return std::min(g.dkx(), g.dky()); }
+double grid_highest(const Grid& g) {
+  return std::numbers::pi * std::min(g.nx / g.lx, g.ny / g.ly);
+}
+
+// w² of a member where its grid holds |k| = k, 0 elsewhere.
+double carried_weight(const CascadeMember& m, double k) {
+  if (k < grid_lowest(m.grid) || k >= grid_highest(m.grid)) return 0;
+  return m.band.weight_squared(k);
+}
+
 std::string cascade_list(const std::vector<int>& cascades) {
   if (cascades.empty()) return "no cascade";
   std::string out = cascades.size() == 1 ? "cascade " : "cascades ";
@@ -78,7 +91,15 @@ void BandWeight::validate(const std::string& what) const {
 }
 
 std::string to_string(CascadeRelation relation) {
-  return relation == CascadeRelation::nested ? "nested" : "additive";
+  switch (relation) {
+    case CascadeRelation::nested:
+      return "nested";
+    case CascadeRelation::independent:
+      return "independent";
+    case CascadeRelation::additive:
+      break;
+  }
+  return "additive";
 }
 
 bool summed_grid(const std::vector<CascadeMember>& members, Grid& fine, std::string* why) {
@@ -114,29 +135,36 @@ bool summed_grid(const std::vector<CascadeMember>& members, Grid& fine, std::str
 }
 
 std::string BandCoverageProblem::describe() const {
-  const std::string range = fmt::format("{:.4g}–{:.4g} rad/m ({:.3g} % of m0)", k_lo, k_hi,
-                                        100 * m0_share);
-  if (weight_sum < 0.5 && cascades.empty()) return "no cascade carries " + range;
-  if (cascades.size() >= 2 && weight_sum > 1) {
-    return fmt::format("{} overlap on {}: Σ w² = {:.3g} there (energy × {:.3g}); bands must share "
-                       "the spectrum out once, or overlap with a declared crossover",
-                       cascade_list(cascades), range, weight_sum, weight_sum);
+  const std::string range = fmt::format("{:.3g}–{:.3g} rad/m", k_lo, k_hi);
+  const std::string share = fmt::format("{:.2g} % of m0", 100 * m0_share);
+  if (weight_sum < 0.5 && cascades.empty()) {
+    return fmt::format("no cascade carries {}: {} lost", range, share);
   }
-  return fmt::format("{} weigh {} with Σ w² = {:.3g}, not 1", cascade_list(cascades), range,
-                     weight_sum);
+  if (cascades.size() >= 2 && weight_sum > 1) {
+    return fmt::format("{} {} carry {}: energy × {:.3g} there, {}", cascade_list(cascades),
+                       cascades.size() == 2 ? "both" : "all", range, weight_sum, share);
+  }
+  return fmt::format("{} weigh{} {} with Σ w² = {:.3g}, not 1: energy × {:.3g} there, {}",
+                     cascade_list(cascades), cascades.size() == 1 ? "s" : "", range, weight_sum,
+                     weight_sum, share);
 }
 
 std::vector<BandCoverageProblem> band_coverage(const OceanCase& sea,
                                                const std::vector<CascadeMember>& members) {
-  // The range to examine: between the set's outer edges — the lowest band's lower edge and the
-  // highest band's upper edge, past their own transitions (a crossover there tapers the set's
-  // band as a grid's limits do; it neither overlaps nor leaves a gap). An unbounded top ends
-  // where the last finite edge's transition ends (beyond it nothing changes).
-  double lo = std::numeric_limits<double>::infinity(), hi = 0, top = 0;
+  // The range to examine: from the lowest |k| a cascade carries to the highest, past the outer
+  // edges' own transitions (a crossover there tapers the set's band as a grid's limits do; it
+  // neither overlaps nor leaves a gap). Each cascade carries its band where its grid holds
+  // whole rings of |k| (carried_weight), so bands declared over the whole spectrum end where
+  // their grids do.
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
   std::vector<double> edges;
   for (const auto& m : members) {
-    lo = std::min(lo, m.band.lo * m.band.crossover);
-    top = std::max(top, m.band.hi / m.band.crossover);
+    const double g_lo = grid_lowest(m.grid), g_hi = grid_highest(m.grid);
+    const double carried_lo = std::max(m.band.lo * m.band.crossover, g_lo);
+    const double carried_hi = std::min(m.band.hi / m.band.crossover, g_hi);
+    if (!(carried_hi > carried_lo)) continue;  // a band its grid cannot hold: carries nothing
+    lo = std::min(lo, carried_lo);
+    hi = std::max(hi, carried_hi);
     for (double e : {m.band.lo, m.band.hi}) {
       if (e > 0 && std::isfinite(e)) {
         edges.push_back(e / m.band.crossover);
@@ -144,11 +172,12 @@ std::vector<BandCoverageProblem> band_coverage(const OceanCase& sea,
         edges.push_back(e * m.band.crossover);
       }
     }
+    edges.push_back(g_lo);
+    edges.push_back(g_hi);
   }
+  if (!(hi > lo)) return {};
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  hi = std::isinf(top) ? (edges.empty() ? lo : edges.back()) : top;
-  if (!(hi > lo)) return {};  // one band over everything (or no inner range): nothing to share
   edges.erase(std::remove_if(edges.begin(), edges.end(),
                              [&](double e) { return e < lo || e > hi; }),
               edges.end());
@@ -156,7 +185,7 @@ std::vector<BandCoverageProblem> band_coverage(const OceanCase& sea,
   // where hard cuts jump), and group consecutive samples whose sum is not 1 into ranges.
   std::vector<double> ks;
   std::vector<double> cuts = edges;
-  cuts.push_back(std::max(lo, 1e-12));
+  cuts.push_back(lo);
   cuts.push_back(hi);
   std::sort(cuts.begin(), cuts.end());
   cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
@@ -175,17 +204,17 @@ std::vector<BandCoverageProblem> band_coverage(const OceanCase& sea,
     if (!(m0 > 0)) return 0.0;
     return spectral_moment(omni, 0, Band{dispersion.omega(a), dispersion.omega(b)}) / m0;
   };
+  auto weights = [&](double k) {
+    double sum = 0;
+    std::vector<int> carrying;
+    for (const auto& m : members) {
+      const double w2 = carried_weight(m, k);
+      sum += w2;
+      if (w2 > 0) carrying.push_back(m.cascade);
+    }
+    return std::pair{sum, carrying};
+  };
   for (std::size_t i = 0; i < ks.size();) {
-    auto weights = [&](double k) {
-      double sum = 0;
-      std::vector<int> carrying;
-      for (const auto& m : members) {
-        const double w2 = m.band.weight_squared(k);
-        sum += w2;
-        if (w2 > 0) carrying.push_back(m.cascade);
-      }
-      return std::pair{sum, carrying};
-    };
     auto [sum, carrying] = weights(ks[i]);
     if (std::abs(sum - 1) <= 1e-9) {
       ++i;
@@ -223,15 +252,25 @@ std::vector<BandCoverageProblem> band_coverage(const OceanCase& sea,
   return problems;
 }
 
-void require_bands_share_out(const OceanCase& sea, const std::vector<CascadeMember>& members) {
-  for (const auto& p : band_coverage(sea, members)) {
-    if (p.m0_share > kSmallestEnergyFraction) {
-      throw InvalidInput(fmt::format(
-          "the cascades' bands do not share the spectrum out once: {} (the rule allows {:g} of "
-          "m0)",
-          p.describe(), kSmallestEnergyFraction));
-    }
+std::vector<BandCoverageProblem> band_sharing_problems(const OceanCase& sea,
+                                                       const std::vector<CascadeMember>& members) {
+  std::vector<BandCoverageProblem> out;
+  for (auto& p : band_coverage(sea, members)) {
+    if (p.m0_share > kSmallestEnergyFraction) out.push_back(std::move(p));
   }
+  return out;
+}
+
+void require_bands_share_out(const OceanCase& sea, const std::vector<CascadeMember>& members) {
+  const auto problems = band_sharing_problems(sea, members);
+  if (problems.empty()) return;
+  std::string list;
+  for (const auto& p : problems) list += (list.empty() ? "" : "; ") + p.describe();
+  throw InvalidInput(fmt::format(
+      "the cascades' bands do not share the spectrum out once: {} (an additive set has "
+      "Σ w² = 1 wherever its grids hold the spectrum, allowing {:g} of m0; relation = "
+      "\"independent\" declares cascades that are each a whole sea of their own)",
+      list, kSmallestEnergyFraction));
 }
 
 }  // namespace swell::reference

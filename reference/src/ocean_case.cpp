@@ -36,10 +36,11 @@ class BandedSpectrum final : public DirectionalSpectrum {
   BandWeight band_;
 };
 
-// The summed surface of an additive set on its fine grid (lengths lx × ly): the wave vector
+// The summed surface of a set on its fine grid (lengths lx × ly): the wave vector
 // K = (n Δkx, m Δky) carries, for every cascade whose grid holds K (K·L_c/2π integer, inside
-// its band of indices, not its Nyquist), w_c² Ψ(K) Δk_c²; divided by the fine Δk² so that the
-// checks' μ = ½(Ψ(k) + Ψ(−k)) Δk² comes out as the sum of the cascades' μ_c.
+// its band of indices, not its Nyquist), w_c² Ψ_c(K) Δk_c² — Ψ_c the cascade's own sea for
+// independent seas, the set's otherwise; divided by the fine Δk² so that the checks'
+// μ = ½(Ψ(k) + Ψ(−k)) Δk² comes out as the sum of the cascades' μ_c.
 class SummedCascadeSpectrum final : public DirectionalSpectrum {
  public:
   SummedCascadeSpectrum(DirectionalSpectrumPtr sea, std::vector<CascadeMember> members, double lx,
@@ -57,7 +58,8 @@ class SummedCascadeSpectrum final : public DirectionalSpectrum {
         continue;
       }
       const double w2 = c.band.weight_squared(std::hypot(kx, ky));
-      if (w2 > 0) total += w2 * sea_->psi(kx, ky) * c.grid.dkx() * c.grid.dky() / fine_dk2;
+      const DirectionalSpectrum& psi = c.spectrum ? *c.spectrum : *sea_;
+      if (w2 > 0) total += w2 * psi.psi(kx, ky) * c.grid.dkx() * c.grid.dky() / fine_dk2;
     }
     return total;
   }

@@ -35,7 +35,8 @@ std::complex<double> cascade_amplitude(const reference::DirectionalSpectrum& sea
 
 // h̃0 at signed wave index (n, m) of the case's sampling, from the sea's (unweighted) Ψ. A
 // summed cascade set adds every cascade whose grid holds the wave vector: cascade c's index is
-// (n, m)·L_c/L, its weight, Δk and random numbers its own (reference/cascade.hpp).
+// (n, m)·L_c/L, its weight, Δk and random numbers its own, and its Ψ its own when it is an
+// independent sea (reference/cascade.hpp).
 std::complex<double> amplitude(const reference::DirectionalSpectrum& sea, const OceanCase& c,
                                int n, int m) {
   // A lattice's caller asks only for the k_m of classes that carry energy (and their −k_m,
@@ -53,7 +54,9 @@ std::complex<double> amplitude(const reference::DirectionalSpectrum& sea, const 
         !g.carries_energy(nc, mc)) {
       continue;
     }
-    sum += cascade_amplitude(sea, c, g, member.band, member.cascade, nc, mc);
+    // Independent seas: each cascade's own Ψ (the set's sea is then their sum).
+    const auto& psi = member.spectrum ? *member.spectrum : sea;
+    sum += cascade_amplitude(psi, c, g, member.band, member.cascade, nc, mc);
   }
   return sum;
 }

@@ -13,6 +13,7 @@
 #include "common/parallel_tasks.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/moments.hpp"
+#include "swell/reference/sampling_validity.hpp"
 #include "swell/validation/stats/periodogram.hpp"
 #include "swell/validation/stats/statistics.hpp"
 #include "swell/validation/stats/wave_fit.hpp"
@@ -305,7 +306,8 @@ RecoveredAmplitudes recover(const OceanCase& ocean, const std::vector<std::vecto
 std::vector<CheckResult> band_checks(const CascadeAnalysis& analysis,
                                      const std::vector<reference::CascadeMember>& members,
                                      double alpha);
-CheckResult energy_check(const std::vector<CascadeAnalysis>& cascades, double alpha);
+CheckResult energy_check(const std::vector<CascadeAnalysis>& cascades, bool independent,
+                         double alpha);
 CheckResult independence_check(const std::vector<CascadeAnalysis>& cascades, double alpha);
 CheckResult patch_check(const std::vector<CascadeAnalysis>& cascades);
 CheckResult nested_check(const std::vector<CascadeAnalysis>& cascades);
@@ -320,10 +322,14 @@ CascadeSetResults run_cascade_set_checks(const std::vector<CascadeView>& cascade
   detail::run_tasks(cascades.size(), options.threads,
                     [&](std::size_t c) { analyses[c] = analyse(cascades[c]); });
   CascadeSetResults out;
-  if (options.relation == reference::CascadeRelation::additive) {
+  if (reference::is_summed(options.relation)) {
     for (const auto& a : analyses) out.bands.push_back(band_checks(a, members, options.alpha_per_check));
     if (analyses.size() >= 2) {
-      if (!options.free_scale) out.set.push_back(energy_check(analyses, options.alpha_per_check));
+      if (!options.free_scale) {
+        out.set.push_back(energy_check(
+            analyses, options.relation == reference::CascadeRelation::independent,
+            options.alpha_per_check));
+      }
       out.set.push_back(independence_check(analyses, options.alpha_per_check));
       out.set.push_back(patch_check(analyses));
     }
@@ -436,7 +442,8 @@ std::vector<CheckResult> band_checks(const CascadeAnalysis& cascade,
   return out;
 }
 
-CheckResult energy_check(const std::vector<CascadeAnalysis>& cascades, double alpha) {
+CheckResult energy_check(const std::vector<CascadeAnalysis>& cascades, bool independent,
+                         double alpha) {
   std::vector<double> all_weights;
   double measured = 0, expected = 0;
   struct Part {
@@ -460,12 +467,16 @@ CheckResult energy_check(const std::vector<CascadeAnalysis>& cascades, double al
   }
   const stats::WeightedExponentialSum law(all_weights);
   const double p = law.two_sided_p(measured);
-  const auto& sea = *cascades.front().ocean;
-  const double m0 = reference::spectral_moment(sea.sea_spectrum()->omnidirectional(), 0);
-  std::string reason = fmt::format("Σ mean h_c² = {:.4g} m² against the union's band-limited "
+  // The sea of the sum: the set's, or (independent seas) every cascade's added.
+  double m0 = 0;
+  for (const auto& c : cascades) {
+    m0 += reference::spectral_moment(c.ocean->sea_spectrum()->omnidirectional(), 0);
+    if (!independent) break;
+  }
+  std::string reason = fmt::format("Σ mean h_c² = {:.4g} m² against the {} band-limited "
                                    "{:.4g} m² ({:.3g} % of the sea's m0 {:.4g} m²); ratio {:.3f}",
-                                   measured, expected, 100 * expected / m0, m0,
-                                   measured / expected);
+                                   measured, independent ? "seas'" : "union's", expected,
+                                   100 * expected / m0, m0, measured / expected);
   if (p < alpha) {
     // Which cascade is off, and whether another cascade's Δk explains its factor.
     std::size_t worst = 0;
@@ -738,6 +749,45 @@ CheckResult nested_check(const std::vector<CascadeAnalysis>& cascades) {
 }
 
 }  // namespace
+
+CheckResult check_band_sharing(const OceanCase& sea,
+                               const std::vector<reference::CascadeMember>& members) {
+  const auto problems = reference::band_coverage(sea, members);
+  double largest = 0;
+  bool overlap = false;
+  std::string found;
+  for (const auto& p : problems) {
+    largest = std::max(largest, p.m0_share);
+    if (p.m0_share <= reference::kSmallestEnergyFraction) continue;
+    found += (found.empty() ? "" : "; ") + p.describe();
+    overlap = overlap || p.weight_sum > 1;
+  }
+  std::string bands;
+  for (const auto& m : members) bands += (bands.empty() ? "" : ", ") + m.band.describe();
+  const std::string subject = fmt::format("{} cascades, bands {}", members.size(), bands);
+  const bool ok = found.empty();
+  std::string reason;
+  if (!ok) {
+    reason = found;
+    // Engines that run whole seas in every cascade mean them to add: say how to declare that.
+    if (overlap) {
+      reason += "; cascades that are each a whole sea of their own are declared with "
+                "relation = \"independent\"";
+    }
+  } else if (problems.empty()) {
+    reason = "the bands share the spectrum out once (Σ w² = 1 wherever the cascades' grids hold it)";
+  } else {
+    reason = fmt::format("the bands share the spectrum out once; where Σ w² ≠ 1 lies at most "
+                         "{:.2g} of m0",
+                         largest);
+  }
+  return exact_check(
+      "cascades.bands", subject, largest, reference::kSmallestEnergyFraction, ok,
+      fmt::format("every range of |k| where Σ_c w_c² ≠ 1 holds ≤ {:g} of m0 (the declared bands "
+                  "share the spectrum out once)",
+                  reference::kSmallestEnergyFraction),
+      reason);
+}
 
 std::vector<CheckResult> check_summed_bands(const OceanCase& summed,
                                             const reference::FrameSequence& frames, double alpha) {

@@ -27,7 +27,7 @@ GateReport judge_cascades(const CaseFile& case_file,
                           const GateOptions& options,
                           Clock::time_point start) {
   options.validate();
-  const bool additive = case_file.relation == reference::CascadeRelation::additive;
+  const bool summed_set = reference::is_summed(case_file.relation);
   std::vector<std::size_t> given;
   for (std::size_t c = 0; c < cascades.size(); ++c) {
     if (!cascades[c].frames.empty()) given.push_back(c);
@@ -49,10 +49,10 @@ GateReport judge_cascades(const CaseFile& case_file,
   int statistical = 0;
   for (auto c : given) {
     statistical += statistical_check_count(case_file.scale, cascades[c].frames.size());
-    if (additive) ++statistical;
+    if (summed_set) ++statistical;
   }
   const bool set_checks = given.size() >= 2;
-  if (set_checks && additive) statistical += free ? 1 : 2;
+  if (set_checks && summed_set) statistical += free ? 1 : 2;
   if (sum) statistical += statistical_check_count(case_file.scale, sum->frames.size()) + 1;
   const double alpha_per_check = options.alpha / double(std::max(1, statistical));
 
@@ -116,6 +116,12 @@ GateReport judge_cascades(const CaseFile& case_file,
   for (std::size_t v = 0; v < views.size(); ++v) {
     append(ordinary[std::size_t(views[v].index)]);
     if (v < set_results.bands.size()) append(set_results.bands[v]);
+  }
+  // An additive set's bands are judged from the case alone, whichever frames are given: a set
+  // whose bands overlap or leave a gap is judged, and fails here naming every range.
+  if (case_file.relation == reference::CascadeRelation::additive &&
+      case_file.cascades.size() >= 2) {
+    report.results.push_back(check_band_sharing(case_file.ocean, case_file.members()));
   }
   append(set_results.set);
   if (!set_checks && !given.empty() && case_file.cascades.size() >= 2) {

@@ -440,9 +440,15 @@ InputSpec read_input(const Reporter& report, const Section& input) {
   return out;
 }
 
+std::vector<reference::SeaComponent> read_components(const Reporter& report, const toml::table& holder,
+                                                     const std::string& name,
+                                                     const std::string& header, CaseFile* scale,
+                                                     const fs::path& directory);
+
 // [cascades] relation, crossover and the [[cascade]] tables (docs/conventions.md §2.2): each its grid
-// (n, length), its band [lo, hi) in rad/m, and its frames as in [input]; [sum] the summed
-// surface's frames. `ocean` holds what the cascades share; it takes cascade 0's grid.
+// (n, length), its band [lo, hi) in rad/m, its frames as in [input] and, for independent seas,
+// its own sea ([cascade.spectrum], [cascade.spreading]); [sum] the summed surface's frames.
+// `ocean` holds what the cascades share; it takes cascade 0's grid.
 void read_cascades(const Reporter& report, const toml::table& document, CaseFile& out) {
   const auto* settings = document.get_as<toml::table>("cascades");
   const auto* list = document.get_as<toml::array>("cascade");
@@ -455,7 +461,10 @@ void read_cascades(const Reporter& report, const toml::table& document, CaseFile
     return;
   }
   const Section cascades(report, "cascades", settings);
-  if (!settings) report.fail("[[cascade]] tables need a [cascades] section (relation = \"additive\" | \"nested\")");
+  if (!settings) {
+    report.fail("[[cascade]] tables need a [cascades] section (relation = \"additive\" | "
+                "\"independent\" | \"nested\")");
+  }
   if (!list || list->empty()) {
     report.fail("[cascades] needs at least one [[cascade]] table (n, length, band, files and "
                 "channels)");
@@ -466,25 +475,54 @@ void read_cascades(const Reporter& report, const toml::table& document, CaseFile
     out.relation = reference::CascadeRelation::additive;
   } else if (relation == "nested") {
     out.relation = reference::CascadeRelation::nested;
+  } else if (relation == "independent") {
+    out.relation = reference::CascadeRelation::independent;
   } else {
-    cascades.fail("relation", fmt::format("must be \"additive\" or \"nested\" (got \"{}\")",
+    cascades.fail("relation", fmt::format("must be \"additive\" (bands that share one sea out), "
+                                          "\"independent\" (whole seas that sum) or \"nested\" "
+                                          "(two samplings of one sea) (got \"{}\")",
                                           relation));
   }
   const bool additive = out.relation == reference::CascadeRelation::additive;
+  const bool independent = out.relation == reference::CascadeRelation::independent;
+  const bool nested = out.relation == reference::CascadeRelation::nested;
   const double crossover = cascades.number_or("crossover", 1);
   if (!(std::isfinite(crossover) && crossover >= 1)) {
     cascades.fail("crossover", fmt::format("must be a ratio ≥ 1 (1: hard cuts; got {:g})",
                                            crossover));
   }
-  if (!additive && cascades.has("crossover")) {
+  if (nested && cascades.has("crossover")) {
     cascades.fail("crossover", "weights the bands of an additive set; nested bands are not added");
   }
   auto keys = input_keys();
   for (const char* key : {"n", "length", "band"}) keys.push_back(key);
+  if (independent) {
+    keys.push_back("spectrum");
+    keys.push_back("spreading");
+  }
   for (std::size_t c = 0; c < list->size(); ++c) {
-    const Section table(report, fmt::format("cascade {}", c), list->get(c)->as_table());
+    const toml::table* cascade_table = list->get(c)->as_table();
+    const Section table(report, fmt::format("cascade {}", c), cascade_table);
     CascadeInput cascade;
     cascade.index = int(c);
+    // Only an independent sea carries a sea of its own: an additive set's bands share the set's
+    // sea out, and nested bands sample it.
+    if (!independent) {
+      for (const char* key : {"spectrum", "spreading"}) {
+        if (table.has(key)) {
+          table.fail(key, fmt::format("a cascade declares its own sea only in a set of "
+                                      "independent seas ([cascades] relation = \"independent\"); "
+                                      "{} cascades carry the set's [spectrum]",
+                                      to_string(out.relation)));
+        }
+      }
+    } else if (table.has("spectrum")) {
+      cascade.components = read_components(report, *cascade_table, fmt::format("cascade {}.", c),
+                                           "cascade.", nullptr, out.directory);
+    } else if (table.has("spreading")) {
+      table.fail("spreading", "a cascade's own spreading goes with its own sea: give "
+                              "[cascade.spectrum] too, or leave both out for the set's sea");
+    }
     // A cascade's frames are optional: the gate may judge the summed surface alone.
     read_input_keys(report, table, keys, cascade.input, true);
     const auto n = table.integer_pair("n");
@@ -517,7 +555,7 @@ void read_cascades(const Reporter& report, const toml::table& document, CaseFile
     }
     out.cascades.push_back(std::move(cascade));
   }
-  if (!additive) {
+  if (nested) {
     for (const auto& c : out.cascades) {
       const auto& first = out.cascades.front().grid;
       if (c.grid.lx != first.lx || c.grid.ly != first.ly) {
@@ -529,13 +567,20 @@ void read_cascades(const Reporter& report, const toml::table& document, CaseFile
       }
     }
   }
+  // A set of independent seas that each declare their own: the set's sea is cascade 0's (the
+  // case's [spectrum] may be left out).
+  if (independent && !document.contains("spectrum")) {
+    out.ocean.set_components(out.cascades.front().components);
+  }
   out.sum = read_input(report, sum);
   if (sum.present()) {
-    if (!additive) sum.fail("files", "nested bands are not added: a nested set has no summed surface");
+    if (nested) sum.fail("files", "nested bands are not added: a nested set has no summed surface");
     if (out.sum.files.empty()) sum.missing("files", "the pattern of the summed surface's frames");
     reference::Grid fine;
     std::string why;
-    if (!reference::summed_grid(out.members(), fine, &why)) {
+    std::vector<reference::CascadeMember> grids;  // their grids are all summed_grid asks
+    for (const auto& c : out.cascades) grids.push_back({c.index, c.grid, c.band, nullptr});
+    if (!reference::summed_grid(grids, fine, &why)) {
       sum.fail("files", "the cascades cannot be summed on one grid: " + why);
     }
   }
@@ -1000,50 +1045,113 @@ void read_scale(const Section& spectrum, CaseFile& out) {
   }
 }
 
-// The sea: [spectrum] and [spreading] for one component, or [[spectrum]] tables, each with its
-// own [spectrum.spreading], for a composite sea whose components' Ψ add. scale applies to the
-// whole sea and is given once, in the first component.
-void read_sea(const Reporter& report, const toml::table& document, CaseFile& out) {
-  const toml::node* node = document.get("spectrum");
-  if (!node) report.fail("missing section [spectrum] (model = \"jonswap\" | …, with its parameters)");
-  if (!node->is_array()) {
-    const Section spectrum(report, "spectrum", node->as_table());
-    const Section spreading = section_of(report, document, "spreading");
-    read_scale(spectrum, out);
-    out.ocean.set_components({read_component(spectrum, spreading, {"scale"}, out.directory)});
-    return;
+// A sea's components from `holder` (the document, or a [[cascade]] table of independent seas):
+// [spectrum] and [spreading] for one component, or [[spectrum]] tables, each with its own
+// [spectrum.spreading], for a composite sea whose components' Ψ add. `name` prefixes the
+// sections' names in messages ("" or "cascade 1."), `header` the tables' ("" or "cascade.").
+// scale applies to the whole case and is given once, in the first component of the case's own
+// sea (`scale` non-null); a cascade's sea has none.
+std::vector<reference::SeaComponent> read_components(const Reporter& report, const toml::table& holder,
+                                                     const std::string& name,
+                                                     const std::string& header, CaseFile* scale,
+                                                     const fs::path& directory) {
+  const toml::node* node = holder.get("spectrum");
+  if (!node) {
+    report.fail(fmt::format("missing section [{}spectrum] (model = \"jonswap\" | …, with its "
+                            "parameters)",
+                            header));
   }
-  if (document.contains("spreading")) {
-    report.fail("[spreading]: a composite sea ([[spectrum]] tables) gives each component's "
-                "spreading in its own [spectrum.spreading] table, after that component's "
-                "[[spectrum]]; remove [spreading]");
+  auto refuse_scale = [&](const Section& spectrum) {
+    if (!scale && spectrum.has("scale")) {
+      spectrum.fail("scale", "applies to the whole case: give it in the set's [spectrum]");
+    }
+  };
+  if (!node->is_array()) {
+    if (!node->is_table()) {
+      report.fail(node->source(), fmt::format("'{}spectrum' must be a table [{}spectrum] or an "
+                                              "array of tables [[{}spectrum]], not {}",
+                                              header, header, header, type_name(*node)));
+    }
+    const Section spectrum(report, name + "spectrum", node->as_table());
+    const toml::node* spreading_node = holder.get("spreading");
+    if (spreading_node && !spreading_node->is_table()) {
+      report.fail(spreading_node->source(),
+                  fmt::format("'{}spreading' must be a table [{}spreading], not {}", header,
+                              header, type_name(*spreading_node)));
+    }
+    const Section spreading(report, name + "spreading",
+                            spreading_node ? spreading_node->as_table() : nullptr);
+    refuse_scale(spectrum);
+    if (scale) read_scale(spectrum, *scale);
+    return {read_component(spectrum, spreading,
+                           scale ? std::vector<std::string>{"scale"} : std::vector<std::string>{},
+                           directory)};
+  }
+  if (holder.contains("spreading")) {
+    report.fail(fmt::format("[{0}spreading]: a composite sea ([[{0}spectrum]] tables) gives each "
+                            "component's spreading in its own [{0}spectrum.spreading] table, "
+                            "after that component's [[{0}spectrum]]; remove [{0}spreading]",
+                            header));
   }
   const toml::array& tables = *node->as_array();
-  if (tables.empty()) report.fail("[[spectrum]]: no components");
+  if (tables.empty()) report.fail(fmt::format("[[{}spectrum]]: no components", header));
   std::vector<reference::SeaComponent> components;
   for (std::size_t i = 0; i < tables.size(); ++i) {
     const toml::table* table = tables[i].as_table();
-    const std::string name = fmt::format("spectrum {}", i);
-    const Section spectrum(report, name, table);
+    if (!table) {
+      report.fail(node->source(), fmt::format("[[{}spectrum]] must be tables, one per component",
+                                              header));
+    }
+    const std::string component = fmt::format("{}spectrum {}", name, i);
+    const Section spectrum(report, component, table);
     const toml::node* spreading_node = table->get("spreading");
     if (spreading_node && !spreading_node->is_table()) {
-      spectrum.wrong_type("spreading", "a table [spectrum.spreading] (model, its parameters, "
-                                       "wind_dir_deg)");
+      spectrum.wrong_type("spreading", fmt::format("a table [{}spectrum.spreading] (model, its "
+                                                   "parameters, wind_dir_deg)",
+                                                   header));
     }
-    const Section spreading(report, name + ".spreading",
+    const Section spreading(report, component + ".spreading",
                             spreading_node ? spreading_node->as_table() : nullptr);
-    if (i == 0) {
-      read_scale(spectrum, out);
+    refuse_scale(spectrum);
+    if (scale && i == 0) {
+      read_scale(spectrum, *scale);
     } else if (spectrum.has("scale")) {
       spectrum.fail("scale", "applies to the whole sea: give it once, in the first [[spectrum]]");
     }
     components.push_back(
         read_component(spectrum, spreading,
-                       i == 0 ? std::vector<std::string>{"scale", "spreading"}
-                              : std::vector<std::string>{"spreading"},
-                       out.directory));
+                       scale && i == 0 ? std::vector<std::string>{"scale", "spreading"}
+                                       : std::vector<std::string>{"spreading"},
+                       directory));
   }
-  out.ocean.set_components(components);
+  return components;
+}
+
+// True when the document is a set of independent seas whose every [[cascade]] declares its own
+// spectrum: the set's [spectrum] may then be left out.
+bool every_cascade_has_its_sea(const toml::table& document) {
+  const auto* settings = document.get_as<toml::table>("cascades");
+  const auto* list = document.get_as<toml::array>("cascade");
+  if (!settings || !list || list->empty()) return false;
+  const auto* relation = settings->get_as<std::string>("relation");
+  if (!relation || relation->get() != "independent") return false;
+  for (const auto& node : *list) {
+    const auto* table = node.as_table();
+    if (!table || !table->contains("spectrum")) return false;
+  }
+  return true;
+}
+
+// The case's sea ([spectrum], [spreading] or [[spectrum]] tables; read_components).
+void read_sea(const Reporter& report, const toml::table& document, CaseFile& out) {
+  if (!document.contains("spectrum") && every_cascade_has_its_sea(document)) {
+    if (document.contains("spreading")) {
+      report.fail("[spreading] without [spectrum]: each cascade declares its own sea; give its "
+                  "spreading in [cascade.spreading]");
+    }
+    return;  // read_cascades gives the set cascade 0's sea
+  }
+  out.ocean.set_components(read_components(report, document, "", "", &out, out.directory));
 }
 
 void read_synthesis(const Section& synthesis, reference::OceanCase& ocean) {
@@ -1053,8 +1161,9 @@ void read_synthesis(const Section& synthesis, reference::OceanCase& ocean) {
   read_seed(synthesis, ocean.seed);
 }
 
-// The rules of the case as a whole (OceanCase::validate, each cascade's, and an additive set's
-// bands), reported against the file.
+// The rules of the case as a whole (OceanCase::validate and each cascade's), reported against
+// the file. An additive set whose bands do not share the spectrum out is still read: the gate
+// judges it (cascades.bands, docs/gate.md §10).
 void validate_case(const Reporter& report, CaseFile& out) {
   auto& ocean = out.ocean;
   try {
@@ -1065,9 +1174,6 @@ void validate_case(const Reporter& report, CaseFile& out) {
       } catch (const InvalidInput& e) {
         throw InvalidInput(fmt::format("[cascade {}]: {}", c, e.what()));
       }
-    }
-    if (out.is_cascade_set() && out.relation == reference::CascadeRelation::additive) {
-      reference::require_bands_share_out(ocean, out.members());
     }
   } catch (const InvalidInput& e) {
     report.fail(e.what());
@@ -1140,7 +1246,8 @@ reference::OceanCase CaseFile::cascade_case(std::size_t c) const {
   out.members.clear();
   out.grid = cascade.grid;
   out.band = cascade.band;
-  out.cascade = relation == reference::CascadeRelation::additive ? cascade.index : 0;
+  if (!cascade.components.empty()) out.set_components(cascade.components);
+  out.cascade = reference::is_summed(relation) ? cascade.index : 0;
   return out;
 }
 
@@ -1148,13 +1255,16 @@ std::vector<reference::CascadeMember> CaseFile::members() const {
   std::vector<reference::CascadeMember> out;
   for (std::size_t c = 0; c < cascades.size(); ++c) {
     const auto sea = cascade_case(c);
-    out.push_back({sea.cascade, sea.grid, sea.band});
+    reference::CascadeMember member{sea.cascade, sea.grid, sea.band, nullptr};
+    // Independent seas each carry their own Ψ; the sum's sea is theirs added.
+    if (relation == reference::CascadeRelation::independent) member.spectrum = sea.sea_spectrum();
+    out.push_back(std::move(member));
   }
   return out;
 }
 
 std::optional<reference::OceanCase> CaseFile::summed_case(std::string* why) const {
-  if (!is_cascade_set() || relation != reference::CascadeRelation::additive) {
+  if (!is_cascade_set() || !reference::is_summed(relation)) {
     if (why) *why = is_cascade_set() ? "nested bands are not added" : "not a cascade set";
     return std::nullopt;
   }
@@ -1166,6 +1276,15 @@ std::optional<reference::OceanCase> CaseFile::summed_case(std::string* why) cons
   out.band = {};
   out.cascade = 0;
   out.members = list;
+  if (relation == reference::CascadeRelation::independent) {
+    // The sum of independent seas: every cascade's components, its sea added once per cascade.
+    std::vector<reference::SeaComponent> all;
+    for (std::size_t c = 0; c < cascades.size(); ++c) {
+      const auto parts = cascade_case(c).components();
+      all.insert(all.end(), parts.begin(), parts.end());
+    }
+    out.set_components(all);
+  }
   return out;
 }
 
@@ -1227,6 +1346,47 @@ void write_input(std::string& out, const std::string& header, const InputSpec& i
     }
 }
 
+// A sea's components: one as [spectrum] + [spreading], a composite sea as [[spectrum]] tables,
+// each followed by its [spectrum.spreading]; `header` prefixes the tables ("cascade." for a
+// [[cascade]]'s own sea), `scale` (the case's, in its first component) is left out when empty.
+void write_sea(std::string& out, const std::vector<reference::SeaComponent>& components,
+               const std::string& header, bool probes, const std::string& scale) {
+  const bool composite = components.size() > 1;
+  const std::string spectrum_table =
+      composite ? "[[" + header + "spectrum]]" : "[" + header + "spectrum]";
+  const std::string spreading_table =
+      composite ? "[" + header + "spectrum.spreading]" : "[" + header + "spreading]";
+  for (std::size_t i = 0; i < components.size(); ++i) {
+    const auto& part = components[i];
+    // The direction of a sea without a spreading model: phillips's own; a 2-D table has none.
+    const bool direction_in_spectrum = part.spreading.model.empty() && !part.table;
+    out += fmt::format("{}\nmodel = {}\n", spectrum_table, toml_string(part.spectrum.model));
+    if (i == 0 && !scale.empty()) out += fmt::format("scale = \"{}\"\n", scale);
+    write_parameters(out, part.spectrum);
+    if (part.energy_factor != 1) {
+      out += fmt::format("energy_factor = {}\n", toml_number(part.energy_factor));
+    }
+    if (part.short_wave_fade != 0) {
+      out += fmt::format("short_wave_fade = {}\n", toml_number(part.short_wave_fade));
+    }
+    // A long-crested probes sea without a spreading model keeps its direction in [spreading].
+    const bool direction_alone = direction_in_spectrum && probes && part.spectrum.model != "phillips";
+    if (direction_in_spectrum && !direction_alone) {
+      out += fmt::format("wind_dir_deg = {}\n", toml_number(part.wind_dir_deg));
+    }
+    out += "\n";
+    if (direction_alone) {
+      out += fmt::format("{}\nwind_dir_deg = {}\n\n", spreading_table,
+                         toml_number(part.wind_dir_deg));
+    }
+    if (!part.spreading.model.empty()) {
+      out += fmt::format("{}\nmodel = {}\n", spreading_table, toml_string(part.spreading.model));
+      write_parameters(out, part.spreading);
+      out += fmt::format("wind_dir_deg = {}\n\n", toml_number(part.wind_dir_deg));
+    }
+  }
+}
+
 std::string case_toml(const CaseFile& case_file) {
   const auto& c = case_file.ocean;
   std::string out = "# swell case file (docs/case_files.md)\n";
@@ -1261,44 +1421,10 @@ std::string case_toml(const CaseFile& case_file) {
   out += fmt::format("[physics]\ngravity = {}\ndepth = {}\n\n", toml_number(c.gravity),
                      std::isinf(c.depth) && c.depth > 0 ? "\"inf\"" : toml_number(c.depth));
 
-  // One component as [spectrum] + [spreading]; a composite sea as [[spectrum]] tables, each
-  // followed by its [spectrum.spreading].
-  const auto components = c.components();
-  const bool composite = components.size() > 1;
-  for (std::size_t i = 0; i < components.size(); ++i) {
-    const auto& part = components[i];
-    // The direction of a sea without a spreading model: phillips's own; a 2-D table has none.
-    const bool direction_in_spectrum = part.spreading.model.empty() && !part.table;
-    out += fmt::format("{}\nmodel = {}\n", composite ? "[[spectrum]]" : "[spectrum]",
-                       toml_string(part.spectrum.model));
-    if (i == 0) {
-      out += fmt::format("scale = \"{}\"\n",
-                         case_file.scale == SpectrumScale::free ? "free" : "absolute");
-    }
-    write_parameters(out, part.spectrum);
-    if (part.energy_factor != 1) {
-      out += fmt::format("energy_factor = {}\n", toml_number(part.energy_factor));
-    }
-    if (part.short_wave_fade != 0) {
-      out += fmt::format("short_wave_fade = {}\n", toml_number(part.short_wave_fade));
-    }
-    // A long-crested probes sea without a spreading model keeps its direction in [spreading].
-    const bool direction_alone = direction_in_spectrum && case_file.is_probe_case() && part.spectrum.model != "phillips";
-    if (direction_in_spectrum && !direction_alone) {
-      out += fmt::format("wind_dir_deg = {}\n", toml_number(part.wind_dir_deg));
-    }
-    out += "\n";
-    if (direction_alone) {
-      out += fmt::format("{}\nwind_dir_deg = {}\n\n", composite ? "[spectrum.spreading]" : "[spreading]",
-                         toml_number(part.wind_dir_deg));
-    }
-    if (!part.spreading.model.empty()) {
-      out += fmt::format("{}\nmodel = {}\n", composite ? "[spectrum.spreading]" : "[spreading]",
-                         toml_string(part.spreading.model));
-      write_parameters(out, part.spreading);
-      out += fmt::format("wind_dir_deg = {}\n\n", toml_number(part.wind_dir_deg));
-    }
-  }
+  // An independent set whose cascades all carry their own sea needs no [spectrum] of its own,
+  // but writing cascade 0's there reads back to the same set.
+  write_sea(out, c.components(), "", case_file.is_probe_case(),
+            case_file.scale == SpectrumScale::free ? "free" : "absolute");
 
   const std::string seed =
       c.seed > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())
@@ -1346,6 +1472,11 @@ std::string case_toml(const CaseFile& case_file) {
                                                        : toml_number(cascade.band.hi));
       }
       write_input(out, "", cascade.input);
+      if (!cascade.components.empty()) {
+        out += "\n";
+        write_sea(out, cascade.components, "cascade.", false, "");
+        out.pop_back();  // write_sea ends each table with a blank line; the next header adds one
+      }
     }
     write_input(out, "[sum]", case_file.sum);
   }

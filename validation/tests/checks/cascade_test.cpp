@@ -12,6 +12,7 @@
 #include <fstream>
 #include <set>
 #include <unistd.h>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <functional>
 #include <iostream>
@@ -160,38 +161,73 @@ disp_y = "dy"
   }
 }
 
-// Overlaps and gaps are refused naming the range in rad/m and the share of m0 it holds; the
-// share is checked against an independent trapezoid integral of S(ω) over that range.
-TEST(CascadeCase, RefusesBandsThatOverlapOrLeaveGaps) {
-  const std::string overlap = refusal(sea_toml() + "\n[cascades]\n" +
-                                      cascade_table(64, 1000, 0, 0.12, 0) +
-                                      cascade_table(64, 250, 0.1, 0.8, 1));
-  EXPECT_NE(overlap.find("cascades 0 and 1 overlap on 0.1–0.12 rad/m"), std::string::npos) << overlap;
-  const std::string gap = refusal(sea_toml() + "\n[cascades]\n" +
-                                  cascade_table(64, 1000, 0, 0.08, 0) +
-                                  cascade_table(64, 250, 0.1, 0.8, 1));
-  EXPECT_NE(gap.find("no cascade carries 0.08–0.1 rad/m"), std::string::npos) << gap;
-  // The share of m0 in [0.08, 0.1) rad/m, by trapezoids on S(ω) over ω(k) = √(g k).
-  const CaseFile c = parse(pair_toml());
+// The share of m0 that the sea of cascade_test's cases holds in [k0, k1) rad/m, by trapezoids on
+// S(ω) over ω(k) = √(g k) (deep water), independent of the library's quadrature.
+double m0_share(const CaseFile& c, double k0, double k1) {
   const auto sea = c.ocean.sea_spectrum();
   const auto& s = sea->omnidirectional();
-  const double w0 = std::sqrt(9.81 * 0.08), w1 = std::sqrt(9.81 * 0.1);
+  const double w0 = std::sqrt(9.81 * k0), w1 = std::sqrt(9.81 * k1);
   double part = 0;
   const int steps = 20000;
   for (int i = 0; i < steps; ++i) {
     const double a = w0 + (w1 - w0) * i / steps, b = w0 + (w1 - w0) * (i + 1) / steps;
     part += 0.5 * (s(a) + s(b)) * (b - a);
   }
-  const double share = part / (3.0 * 3.0 / 16);
-  const auto problems = swell::reference::band_coverage(c.ocean, {{0, Grid{64, 64, 1000, 1000}, {0, 0.08, 1}},
-                                                                  {1, Grid{64, 64, 250, 250}, {0.1, 0.8, 1}}});
-  ASSERT_EQ(problems.size(), 1u);
-  EXPECT_NEAR(problems[0].m0_share, share, 1e-6 * share);
-  EXPECT_EQ(problems[0].weight_sum, 0);
-  // A declared crossover is a weighted overlap: accepted.
-  EXPECT_EQ(refusal(sea_toml() + "\n[cascades]\ncrossover = 1.2\n" +
-                    cascade_table(64, 1000, 0, 0.1, 0) + cascade_table(64, 250, 0.1, 0.8, 1)),
-            "");
+  return part / (3.0 * 3.0 / 16);  // m0 = Hs²/16
+}
+
+// Overlaps and gaps are read (the gate judges them: cascades.bands), and band_coverage names
+// each with its range in rad/m, its factor Σ w² and the share of m0 it holds; the share is
+// checked against an independent trapezoid integral of S(ω) over that range.
+TEST(CascadeCase, ReadsBandsThatOverlapOrLeaveGapsAndNamesThem) {
+  const CaseFile overlap = parse(sea_toml() + "\n[cascades]\n" + cascade_table(64, 1000, 0, 0.12, 0) +
+                                 cascade_table(64, 250, 0.1, 0.8, 1));
+  const auto overlaps = swell::reference::band_sharing_problems(overlap.ocean, overlap.members());
+  ASSERT_EQ(overlaps.size(), 1u);
+  EXPECT_EQ(overlaps[0].weight_sum, 2);
+  EXPECT_EQ(overlaps[0].cascades, (std::vector<int>{0, 1}));
+  EXPECT_NEAR(overlaps[0].k_lo, 0.1, 1e-12);
+  EXPECT_NEAR(overlaps[0].k_hi, 0.12, 1e-12);
+  EXPECT_NE(overlaps[0].describe().find("cascades 0 and 1 both carry 0.1–0.12 rad/m: energy × 2 there"),
+            std::string::npos)
+      << overlaps[0].describe();
+  const CaseFile gap = parse(sea_toml() + "\n[cascades]\n" + cascade_table(64, 1000, 0, 0.08, 0) +
+                             cascade_table(64, 250, 0.1, 0.8, 1));
+  const auto gaps = swell::reference::band_sharing_problems(gap.ocean, gap.members());
+  ASSERT_EQ(gaps.size(), 1u);
+  EXPECT_NE(gaps[0].describe().find("no cascade carries 0.08–0.1 rad/m"), std::string::npos)
+      << gaps[0].describe();
+  const double share = m0_share(gap, 0.08, 0.1);
+  EXPECT_NEAR(gaps[0].m0_share, share, 1e-6 * share);
+  EXPECT_EQ(gaps[0].weight_sum, 0);
+  // A right pair, and a declared crossover (a weighted overlap), have none.
+  const CaseFile right_pair = parse(pair_toml());
+  EXPECT_TRUE(swell::reference::band_coverage(right_pair.ocean, right_pair.members()).empty());
+  const CaseFile crossover = parse(sea_toml() + "\n[cascades]\ncrossover = 1.2\n" +
+                                   cascade_table(64, 1000, 0, 0.1, 0) + cascade_table(64, 250, 0.1, 0.8, 1));
+  EXPECT_TRUE(swell::reference::band_sharing_problems(crossover.ocean, crossover.members()).empty());
+}
+
+// Cascades declared over the whole spectrum carry it where their grids hold whole rings of |k|
+// (Δk = 2π/L to the Nyquist π n/L): three 64² grids over 1000, 250 and 62.5 m overlap two by
+// two, then all three, then two by two, and the range each group shares is named.
+TEST(CascadeCase, FullSpectrumCascadesOverlapWhereTheirGridsDo) {
+  const CaseFile c = parse(sea_toml() + "\n[cascades]\n" + cascade_table(64, 1000, 0, 100, 0) +
+                           cascade_table(64, 250, 0, 100, 1) + cascade_table(64, 62.5, 0, 100, 2));
+  const auto problems = swell::reference::band_sharing_problems(c.ocean, c.members());
+  const double pi = std::numbers::pi;
+  // (Δk of 250 m, Δk of 62.5 m, Nyquist of 1000 m, Nyquist of 250 m): the groups' edges.
+  const double edges[] = {2 * pi / 250, 2 * pi / 62.5, pi * 64 / 1000, pi * 64 / 250};
+  const std::vector<std::vector<int>> groups = {{0, 1}, {0, 1, 2}, {1, 2}};
+  ASSERT_EQ(problems.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(problems[i].cascades, groups[i]);
+    EXPECT_EQ(problems[i].weight_sum, double(groups[i].size()));
+    EXPECT_NEAR(problems[i].k_lo, edges[i], 1e-12);
+    EXPECT_NEAR(problems[i].k_hi, edges[i + 1], 1e-12);
+    const double share = m0_share(c, edges[i], edges[i + 1]);
+    EXPECT_NEAR(problems[i].m0_share, share, 1e-6 * share);
+  }
 }
 
 TEST(CascadeCase, RefusesWhatASetCannotBe) {
@@ -199,9 +235,15 @@ TEST(CascadeCase, RefusesWhatASetCannotBe) {
                                cascade_table(64, 250, 0.1, 0.8, 1);
   EXPECT_NE(refusal(sea_toml() + "[grid]\nn = 64\nlength = 100.0\n" + cascades).find("[grid]"),
             std::string::npos);
-  EXPECT_NE(refusal(sea_toml() + "\n[cascades]\nrelation = \"stacked\"\n" +
-                    cascade_table(64, 1000, 0, 0.1, 0))
-                .find("relation"),
+  const std::string stacked = refusal(sea_toml() + "\n[cascades]\nrelation = \"stacked\"\n" +
+                                      cascade_table(64, 1000, 0, 0.1, 0));
+  EXPECT_NE(stacked.find("relation"), std::string::npos) << stacked;
+  EXPECT_NE(stacked.find("\"independent\""), std::string::npos) << stacked;
+  // A cascade's own sea belongs to independent seas only.
+  EXPECT_NE(refusal(sea_toml() + "\n[cascades]\n" + cascade_table(64, 1000, 0, 0.1, 0) +
+                    cascade_table(64, 250, 0.1, 0.8, 1) +
+                    "[cascade.spectrum]\nmodel = \"jonswap\"\nhs = 1.0\ntp = 5.0\n")
+                .find("relation = \"independent\""),
             std::string::npos);
   // An additive set of two needs each band.
   EXPECT_NE(refusal(sea_toml() + "\n[cascades]\n[[cascade]]\nn = 64\nlength = 100.0\n"
@@ -221,6 +263,93 @@ TEST(CascadeCase, RefusesWhatASetCannotBe) {
   // A band the sea's grid cannot hold is still a band; but an empty one is refused.
   EXPECT_NE(refusal(sea_toml() + "\n[cascades]\n" + cascade_table(64, 1000, 0.1, 0.1, 0)).find("empty"),
             std::string::npos);
+}
+
+// A set of independent seas: cascade 0 carries the set's sea (JONSWAP Tp 8 s), cascade 1 a sea
+// of its own (JONSWAP Tp 4 s toward 120°), each over its whole band, keyed by its index.
+std::string independent_toml(int frames = 8) {
+  return sea_toml(frames) +
+         "\n[cascades]\nrelation = \"independent\"\n"
+         "\n[[cascade]]\nn = 64\nlength = 1000.0\nfiles = \"cascade0/frame_%04d.exr\"\nheight = \"h\"\n"
+         "\n[[cascade]]\nn = 64\nlength = 250.0\nfiles = \"cascade1/frame_%04d.exr\"\nheight = \"h\"\n"
+         "[cascade.spectrum]\nmodel = \"jonswap\"\nhs = 1.0\ntp = 4.0\ngamma = 3.3\n"
+         "[cascade.spreading]\nmodel = \"cos2s\"\ns = 4.0\nwind_dir_deg = 120.0\n";
+}
+
+// The sum of independent seas carries every cascade's sea: its expected energy on the fine
+// grid, Σ μ, is the cascades' own Σ μ_c added (each from its own case), and its sea has both
+// components; the text swell synth writes reads back to the same set.
+TEST(CascadeCase, ReadsIndependentSeas) {
+  const CaseFile c = parse(independent_toml());
+  EXPECT_EQ(c.relation, swell::reference::CascadeRelation::independent);
+  EXPECT_EQ(swell::reference::to_string(c.relation), "independent");
+  ASSERT_EQ(c.cascades.size(), 2u);
+  EXPECT_TRUE(c.cascades[0].components.empty());
+  ASSERT_EQ(c.cascades[1].components.size(), 1u);
+  const OceanCase c0 = c.cascade_case(0), c1 = c.cascade_case(1);
+  EXPECT_EQ(c0.cascade, 0);
+  EXPECT_EQ(c1.cascade, 1);
+  EXPECT_TRUE(c1.band.everywhere());
+  EXPECT_EQ(c0.spectrum.numbers.at("tp"), 8.0);
+  EXPECT_EQ(c1.spectrum.numbers.at("tp"), 4.0);
+  EXPECT_EQ(c1.spreading.numbers.at("s"), 4.0);
+  EXPECT_EQ(c1.wind_dir_deg, 120.0);
+  const auto summed = c.summed_case();
+  ASSERT_TRUE(summed.has_value());
+  EXPECT_EQ(summed->grid.nx, 256);
+  EXPECT_EQ(summed->components().size(), 2u);
+  auto total = [](const OceanCase& o) {
+    double sum = 0;
+    for (double mu : swell::validation::expected_periodogram(*o.directional_spectrum(), o.grid)) sum += mu;
+    return sum;
+  };
+  const double parts = total(c0) + total(c1);
+  EXPECT_NEAR(total(*summed), parts, 1e-12 * parts);
+  // Cascade 1's own sea is most of its energy: carrying the set's instead would show.
+  OceanCase set_sea = c1;
+  set_sea.set_components(c0.components());
+  EXPECT_GT(std::abs(total(set_sea) - total(c1)), 0.1 * total(c1));
+  const CaseFile again = parse(swell::validation::case_toml(c));
+  EXPECT_EQ(again.relation, c.relation);
+  ASSERT_EQ(again.cascades.size(), 2u);
+  EXPECT_TRUE(again.cascades[0].components.empty());
+  const OceanCase back = again.cascade_case(1);
+  EXPECT_EQ(back.spectrum.numbers, c1.spectrum.numbers);
+  EXPECT_EQ(back.spreading.numbers, c1.spreading.numbers);
+  EXPECT_EQ(back.wind_dir_deg, c1.wind_dir_deg);
+  EXPECT_TRUE(back.band.everywhere());
+  // Every cascade with its own sea: the set's [spectrum] may be left out.
+  const CaseFile own = parse(
+      "[time]\ndt = 0.5\nframes = 4\n[synthesis]\nseed = 3\n[cascades]\nrelation = \"independent\"\n"
+      "[[cascade]]\nn = 64\nlength = 1000.0\n[cascade.spectrum]\nmodel = \"jonswap\"\nhs = 3.0\ntp = 8.0\n"
+      "[cascade.spreading]\nmodel = \"cos2s\"\ns = 10.0\n"
+      "[[cascade]]\nn = 64\nlength = 250.0\n[cascade.spectrum]\nmodel = \"jonswap\"\nhs = 1.0\ntp = 4.0\n"
+      "[cascade.spreading]\nmodel = \"cos2s\"\ns = 4.0\n");
+  EXPECT_EQ(own.ocean.spectrum.numbers.at("tp"), 8.0);
+  EXPECT_EQ(own.cascade_case(1).spectrum.numbers.at("tp"), 4.0);
+}
+
+// The summed surface of independent seas is their sum sample by sample (fp64), each cascade
+// synthesized alone from its own case.
+TEST(CascadeSynthesis, TheSumOfIndependentSeasIsTheSumOfTheCascades) {
+  const CaseFile set = parse(independent_toml(1));
+  const auto summed = set.summed_case();
+  ASSERT_TRUE(summed.has_value());
+  ASSERT_EQ(summed->grid.nx, 256);
+  const swell::impls::SynthesizerOptions fp64{"fftw", swell::impls::Precision::f64};
+  const double t = 2.3;
+  const auto sum = swell::impls::Synthesizer(*summed, fp64).frame(t).fields.at(Field::height);
+  const auto c0 = swell::impls::Synthesizer(set.cascade_case(0), fp64).frame(t).fields.at(Field::height);
+  const auto c1 = swell::impls::Synthesizer(set.cascade_case(1), fp64).frame(t).fields.at(Field::height);
+  double worst = 0, scale = 0;
+  for (int j = 0; j < 64; ++j) {
+    for (int i = 0; i < 64; ++i) {
+      const double expected = c0[j * 64 + i] + c1[((4 * j) % 64) * 64 + (4 * i) % 64];
+      worst = std::max(worst, std::abs(sum[(4 * j) * 256 + 4 * i] - expected));
+      scale = std::max(scale, std::abs(expected));
+    }
+  }
+  EXPECT_LT(worst, 1e-12 * scale);
 }
 
 // ------------------------------------------------------------------ random numbers and the sum
@@ -365,8 +494,8 @@ TEST(CascadeGate, ARightSetPassesEveryCheck) {
   const FrameSequence sum = right(*summed);
   const auto report = gate(c, frames, &sum);
   EXPECT_TRUE(report.passed()) << describe(report);
-  for (const char* name : {"cascade0.band.outside", "cascade1.band.missing", "cascades.energy",
-                           "cascades.independence", "cascades.patch", "sum.energy",
+  for (const char* name : {"cascade0.band.outside", "cascade1.band.missing", "cascades.bands",
+                           "cascades.energy", "cascades.independence", "cascades.patch", "sum.energy",
                            "sum.band.outside", "sum.band.missing", "cascade1.dispersion.residual"}) {
     EXPECT_NE(find(report, name), nullptr) << name;
   }
@@ -387,6 +516,104 @@ TEST(CascadeGate, ARightNestedPairPasses) {
   const auto report = gate(c, {right(c.cascade_case(0)), right(c.cascade_case(1))});
   EXPECT_TRUE(report.passed()) << describe(report);
   EXPECT_NE(find(report, "cascades.nested"), nullptr);
+}
+
+// Three 64² cascades over 1000, 250 and 62.5 m that each carry the whole spectrum, as Godot 4's
+// ocean runs its cascades: declared additive (each band [0, 100) rad/m, beyond every grid) or
+// as independent seas (no band).
+std::string full_spectrum_toml(const std::string& relation, int frames = 8) {
+  std::string text = sea_toml(frames) + "\n[cascades]\nrelation = \"" + relation + "\"\n";
+  const double lengths[] = {1000, 250, 62.5};
+  for (int c = 0; c < 3; ++c) {
+    text += relation == "additive"
+                ? cascade_table(64, lengths[c], 0, 100, c)
+                : "\n[[cascade]]\nn = 64\nlength = " + std::to_string(lengths[c]) +
+                      "\nfiles = \"cascade" + std::to_string(c) + "/frame_%04d.exr\"\nheight = \"h\"\n";
+  }
+  return text;
+}
+
+// The gate's words for cascades `who` carrying [a, b) together (Σ w² = their count), the share
+// of m0 from the trapezoid integral, not from the library.
+std::string carried(const CaseFile& c, const std::string& who, double a, double b, int factor) {
+  return fmt::format("{} carry {:.3g}–{:.3g} rad/m: energy × {} there, {:.2g} % of m0", who, a, b,
+                     factor, 100 * m0_share(c, a, b));
+}
+
+// Three cascades each carrying the whole spectrum, right as independent seas, declared as an
+// additive set: the set is judged (not refused), every cascade passes against its declared
+// band, and cascades.bands fails naming each overlap — its range, factor and share of m0.
+// Declared as independent seas, the same frames pass.
+TEST(CascadeGate, FullSpectrumCascadesDeclaredAdditiveFailNamingEachOverlap) {
+  const CaseFile independent = parse(full_spectrum_toml("independent"));
+  const CaseFile additive = parse(full_spectrum_toml("additive"));
+  std::vector<FrameSequence> frames;
+  for (std::size_t i = 0; i < 3; ++i) frames.push_back(right(independent.cascade_case(i)));
+  const auto report = gate(additive, frames);
+  const double pi = std::numbers::pi;
+  expect_caught(report, "cascades.bands",
+                carried(additive, "cascades 0, 1 and 2 all", 2 * pi / 62.5, pi * 64 / 1000, 3));
+  expect_caught(report, "cascades.bands",
+                carried(additive, "cascades 0 and 1 both", 2 * pi / 250, 2 * pi / 62.5, 2));
+  expect_caught(report, "cascades.bands",
+                carried(additive, "cascades 1 and 2 both", pi * 64 / 1000, pi * 64 / 250, 2));
+  expect_caught(report, "cascades.bands", "relation = \"independent\"");
+  for (const auto& r : report.results) {
+    if (!r.passed) EXPECT_EQ(r.check, "cascades.bands") << r.reason;
+  }
+  const auto right_set = gate(independent, frames);
+  EXPECT_TRUE(right_set.passed()) << describe(right_set);
+  EXPECT_EQ(find(right_set, "cascades.bands"), nullptr);
+  for (const char* name : {"cascade2.energy", "cascade2.band.missing", "cascades.energy",
+                           "cascades.independence", "cascades.patch"}) {
+    EXPECT_NE(find(right_set, name), nullptr) << name;
+  }
+  // The same numbers in every cascade are still caught among independent seas.
+  std::vector<FrameSequence> shared = frames;
+  OceanCase reused = independent.cascade_case(1);
+  reused.cascade = 0;
+  shared[1] = render(independent.cascade_case(1), right_amplitude(reused), right_omega(reused));
+  expect_caught(gate(independent, shared), "cascades.independence",
+                "cascades 0 and 1 share their random numbers");
+}
+
+// Two separate overlaps (cascade 0 up to 0.12 over cascade 1's 0.1, cascade 1 up to 0.5 over
+// cascade 2's 0.45): both named, nothing else.
+TEST(CascadeGate, TwoSeparateOverlapsAreBothNamed) {
+  const CaseFile c = parse(sea_toml() + "\n[cascades]\n" + cascade_table(64, 1000, 0, 0.12, 0) +
+                           cascade_table(64, 250, 0.1, 0.5, 1) + cascade_table(64, 62.5, 0.45, 3.0, 2));
+  std::vector<FrameSequence> frames;
+  for (std::size_t i = 0; i < 3; ++i) frames.push_back(right(c.cascade_case(i)));
+  const auto report = gate(c, frames);
+  expect_caught(report, "cascades.bands", carried(c, "cascades 0 and 1 both", 0.1, 0.12, 2));
+  expect_caught(report, "cascades.bands", carried(c, "cascades 1 and 2 both", 0.45, 0.5, 2));
+  const auto* bands = find(report, "cascades.bands");
+  ASSERT_NE(bands, nullptr);
+  std::size_t named = 0;
+  for (std::size_t at = bands->reason.find(" carry "); at != std::string::npos;
+       at = bands->reason.find(" carry ", at + 1)) {
+    ++named;
+  }
+  EXPECT_EQ(named, 2u) << bands->reason;
+}
+
+// Independent seas with a sum: cascade 1 carries a sea of its own, and the sum carries both.
+// A sum made as if cascade 1 carried the set's sea fails.
+TEST(CascadeGate, IndependentSeasWithTheirSumPass) {
+  const CaseFile c = parse(independent_toml());
+  const auto summed = c.summed_case();
+  ASSERT_TRUE(summed.has_value());
+  const FrameSequence sum = right(*summed);
+  const auto report = gate(c, {right(c.cascade_case(0)), right(c.cascade_case(1))}, &sum);
+  EXPECT_TRUE(report.passed()) << describe(report);
+  for (const char* name : {"cascade1.energy", "cascades.independence", "sum.energy", "sum.band.missing"}) {
+    EXPECT_NE(find(report, name), nullptr) << name;
+  }
+  OceanCase wrong = *summed;
+  wrong.members[1].spectrum = c.cascade_case(0).sea_spectrum();
+  const FrameSequence wrong_sum = render(*summed, right_amplitude(wrong), right_omega(wrong));
+  const auto alone = gate(c, {FrameSequence{}, FrameSequence{}}, &wrong_sum);
+  EXPECT_FALSE(alone.passed()) << describe(alone);
 }
 
 // ------------------------------------------------------------------ the catalogue
@@ -624,6 +851,27 @@ TEST(CascadeCli, AWrongSetFailsWithExitOne) {
   fs::remove_all(dir);
 }
 
+// swell synth makes three independent seas that each carry the whole spectrum; swell gate
+// passes them (exit 0) and, declared an additive set, judges them and fails (exit 1) naming
+// the range that all three carry — not exit 2.
+TEST(CascadeCli, FullSpectrumCascadesAreJudgedNotRefused) {
+  const fs::path dir = scratch("full");
+  write_text(dir / "set.toml", full_spectrum_toml("independent", 4));
+  const auto synth = swell::test::swell("synth --case " + (dir / "set.toml").string() +
+                                        " --impl fftw --sum no --out " + (dir / "out").string());
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  EXPECT_NE(synth.output.find("independent set of 3 cascades"), std::string::npos) << synth.output;
+  const auto right_set = swell::test::swell("gate --case " + (dir / "out/case.toml").string());
+  EXPECT_EQ(right_set.exit_code, 0) << right_set.output;
+  write_text(dir / "out/declared.toml", full_spectrum_toml("additive", 4));
+  const auto declared = swell::test::swell("gate --case " + (dir / "out/declared.toml").string());
+  EXPECT_EQ(declared.exit_code, 1) << declared.output;
+  EXPECT_NE(declared.output.find("cascades 0, 1 and 2 all carry 0.101–0.201 rad/m: energy × 3 there"),
+            std::string::npos)
+      << declared.output;
+  fs::remove_all(dir);
+}
+
 // Bad input exits 2 naming what is wrong, before anything is written.
 TEST(CascadeCli, BadSetsExitTwoNamingTheProblem) {
   const fs::path dir = scratch("bad");
@@ -632,7 +880,9 @@ TEST(CascadeCli, BadSetsExitTwoNamingTheProblem) {
   const auto overlap = swell::test::swell("synth --case " + (dir / "overlap.toml").string() +
                                           " --impl fftw --out " + (dir / "out").string());
   EXPECT_EQ(overlap.exit_code, 2);
-  EXPECT_NE(overlap.output.find("overlap on 0.1–0.12 rad/m"), std::string::npos) << overlap.output;
+  EXPECT_NE(overlap.output.find("cascades 0 and 1 both carry 0.1–0.12 rad/m: energy × 2 there"),
+            std::string::npos)
+      << overlap.output;
   EXPECT_FALSE(fs::exists(dir / "out" / "case.toml"));
   write_text(dir / "set.toml", pair_toml());
   const auto flag = swell::test::swell("synth --case " + (dir / "set.toml").string() +

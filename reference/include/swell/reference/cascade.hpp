@@ -3,7 +3,8 @@
 // cascade c a Tessendorf surface on its own grid n_c over its own patch L_c, whose amplitudes are
 // the conventions' times a band weight w_c(|k|), with Σ_c w_c(|k|)² = 1 wherever the spectrum
 // has energy. Random numbers are keyed by (seed, cascade c, n, m): cascade 0 alone is the
-// single-grid surface.
+// single-grid surface. A set of independent seas sums too, but each cascade carries a whole sea
+// of its own (the set's, or its own spectrum), so the sum's spectrum is the sum of theirs.
 //
 // Band weights. A band [lo, hi) in |k| (rad/m) is a hard cut (w = 1 inside, 0 outside) or, with
 // a crossover ratio r > 1, a smooth one whose w² rises across [lo/r, lo·r] and falls across
@@ -14,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "swell/reference/directional.hpp"
 #include "swell/reference/grid.hpp"
 
 namespace swell::reference {
@@ -42,18 +44,22 @@ struct BandWeight {
   }
 };
 
-// One cascade of an additive set, as a summed surface sees it: its grid (and patch), its band and
-// its index (the random numbers' key).
+// One cascade of a summed set, as a summed surface sees it: its grid (and patch), its band, its
+// index (the random numbers' key) and, for independent seas, its own Ψ.
 struct CascadeMember {
   int cascade = 0;
   Grid grid;
   BandWeight band;
+  DirectionalSpectrumPtr spectrum;  // the cascade's own sea (independent seas); null: the set's
 };
 
 enum class CascadeRelation {
-  additive,  // h = Σ_c h_c, the bands share the spectrum out once
-  nested,    // two samplings of one sea (Mitchell 2005): the coarse grid's waves are the fine one's
+  additive,     // h = Σ_c h_c, the bands share the spectrum out once
+  nested,       // two samplings of one sea (Mitchell 2005): the coarse grid's waves are the fine one's
+  independent,  // h = Σ_c h_c, each cascade a whole sea of its own: the spectra add
 };
+// The relations whose cascades are added into one surface (additive and independent).
+inline bool is_summed(CascadeRelation relation) { return relation != CascadeRelation::nested; }
 std::string to_string(CascadeRelation relation);
 
 // The summed surface of an additive set lives on one grid, the finest spacing s over the largest
@@ -64,19 +70,28 @@ std::string to_string(CascadeRelation relation);
 bool summed_grid(const std::vector<CascadeMember>& members, Grid& fine, std::string* why = nullptr);
 
 // How the declared bands share out the spectrum: the ranges of |k| where Σ_c w_c² is not 1
-// within 1e-9 (between the lowest band's support and the highest's), each with the share of
-// the spectrum's m0 it holds.
+// within 1e-9, each with the share of the spectrum's m0 it holds. A cascade carries its band
+// only where its grid holds whole rings of |k|, from its Δk = min(2π/Lx, 2π/Ly) to its Nyquist
+// min(π nx/Lx, π ny/Ly) (the corners beyond hold a ring in part): so cascades declared over the
+// whole spectrum overlap where their grids do. The ranges examined lie between the lowest |k|
+// any cascade carries and the highest (past the outer edges' crossovers): beyond them the set
+// tapers as one grid's limits do, which is neither an overlap nor a gap.
 struct BandCoverageProblem {
   double k_lo = 0, k_hi = 0;   // rad/m
   double weight_sum = 0;       // Σ_c w_c² there (mid-range value): 0 a gap, 2 an overlap
   double m0_share = 0;         // ∫ over the range of the omnidirectional spectrum / m0
   std::vector<int> cascades;   // the cascades whose weight is nonzero there
-  std::string describe() const;  // "cascades 0 and 1 overlap on 0.050–0.063 rad/m (3.1 % of m0)"
+  // "cascades 0, 1 and 2 all carry 0.393–8.04 rad/m: energy × 3 there, 4.1 % of m0"
+  std::string describe() const;
 };
 std::vector<BandCoverageProblem> band_coverage(const OceanCase& sea,
                                                const std::vector<CascadeMember>& members);
-// The validity rule of an additive set: refuses (InvalidInput) bands that overlap or leave a gap
-// holding more than kSmallestEnergyFraction of m0, naming the range in rad/m and the share.
+// The problems of band_coverage that hold more than kSmallestEnergyFraction of m0: those an
+// additive set must not have (smaller ones are below what any check resolves).
+std::vector<BandCoverageProblem> band_sharing_problems(const OceanCase& sea,
+                                                       const std::vector<CascadeMember>& members);
+// Refuses (InvalidInput) an additive set with band_sharing_problems, naming every one; what
+// swell synth asks of a set it makes (the gate judges such a set instead: cascades.bands).
 void require_bands_share_out(const OceanCase& sea, const std::vector<CascadeMember>& members);
 
 }  // namespace swell::reference

@@ -3,6 +3,10 @@
 // beside the ordinary checks each cascade passes against its band of the spectrum (w_c² Ψ).
 // They consume frames and the case only, and speak the engine's language:
 //
+//   cascades.bands          exact (additive sets): the declared bands share the spectrum out once
+//                           (Σ_c w_c² = 1 wherever the cascades' grids hold it); names every
+//                           overlap and gap with its factor and share of m0 ("cascades 0, 1 and 2
+//                           all carry 0.101–0.201 rad/m: energy × 3 there, 4.1 % of m0")
 //   cascadeC.band.outside   exact: no energy where cascade C's band weight is 0 (beyond rounding);
 //                           names the |k| range, the other cascade carrying it ("cascades 0 and 1
 //                           both carry 0.063–0.080 rad/m (energy × 2.0 there)") or a square cut
@@ -42,9 +46,10 @@ struct CascadeSetOptions {
   bool free_scale = false;        // the engine's scale is free: no energy check
   int threads = 1;                // the cascades are analysed concurrently
 };
-// The band checks of every cascade (additive sets), and the set's checks: an additive set's
-// energy (unless free_scale), independence and patch; a nested set's nested check. The set
-// checks need two cascades; `members` are the whole set's (naming who else carries a range).
+// The band checks of every cascade (additive and independent sets), and the set's checks: a
+// summed set's energy (unless free_scale), independence and patch; a nested set's nested check.
+// The set checks need two cascades; `members` are the whole set's (naming who else carries a
+// range).
 struct CascadeSetResults {
   std::vector<std::vector<CheckResult>> bands;  // bands[v]: cascades[v]'s ("cascadeN.band.…")
   std::vector<CheckResult> set;                 // the set's ("cascades.…")
@@ -52,6 +57,11 @@ struct CascadeSetResults {
 CascadeSetResults run_cascade_set_checks(const std::vector<CascadeView>& cascades,
                                          const std::vector<reference::CascadeMember>& members,
                                          const CascadeSetOptions& options);
+// cascades.bands: how the declared bands of an additive set share out `sea` (the set's sea,
+// reference::band_coverage); fails on every range off Σ w² = 1 holding more than
+// reference::kSmallestEnergyFraction of m0. It judges the case, not frames.
+CheckResult check_band_sharing(const reference::OceanCase& sea,
+                               const std::vector<reference::CascadeMember>& members);
 // The band checks on a summed surface (`summed` has members).
 std::vector<CheckResult> check_summed_bands(const reference::OceanCase& summed,
                                             const reference::FrameSequence& frames, double alpha);

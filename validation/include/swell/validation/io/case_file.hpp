@@ -12,9 +12,10 @@
 //   [synthesis] choppiness = 1.0  loop_period = 0.0  seed = 1
 //   [input]     files = "frame_%04d.exr"  height = "h"  disp_x = "dx" …
 //               value_range = [-4.0, 4.0] (integer images: the values of pixel 0 and the top pixel)
-//   [cascades]  relation = "additive" | "nested"  crossover = 1.0   a cascade set, instead of
-//   [[cascade]] n, length, band = [lo, hi] (rad/m), files, channels  [grid] and [input]
-//   [sum]       files, channels: the summed surface of an additive set (optional)
+//   [cascades]  relation = "additive" | "independent" | "nested"  crossover = 1.0
+//   [[cascade]] n, length, band = [lo, hi] (rad/m), files, channels   a cascade set, instead of
+//               [cascade.spectrum] [cascade.spreading] (independent)  [grid] and [input]
+//   [sum]       files, channels: the summed surface of an additive or independent set (optional)
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -57,12 +58,14 @@ enum class SpectrumScale {
   free,      // the engine scales its spectrum by an unknown constant (Phillips' A, a slider)
 };
 
-// One cascade of a set (docs/conventions.md §2.2): its grid, its band of |k| and its frames.
+// One cascade of a set (docs/conventions.md §2.2): its grid, its band of |k|, its frames and,
+// in a set of independent seas, its own sea.
 struct CascadeInput {
   int index = 0;  // its position in the set: cascade 0, 1, …
   reference::Grid grid;
   reference::BandWeight band;  // everywhere (w = 1) unless the case gives one
   InputSpec input;
+  std::vector<reference::SeaComponent> components;  // its own sea; empty: the set's
 };
 
 // Where a probes case's series are ([input] of a case with [sampling] kind = "probes"): a CSV
@@ -99,18 +102,21 @@ struct CaseFile {
 
   // A cascade set ([cascades] and [[cascade]] tables; docs/conventions.md §2.2): empty for a
   // single-grid case. `ocean` then holds what the cascades share, with cascade 0's grid, and
-  // `input` is empty; `sum` reads the summed surface ([sum]) of an additive set.
+  // `input` is empty; `sum` reads the summed surface ([sum]) of an additive or independent set.
   std::vector<CascadeInput> cascades;
   reference::CascadeRelation relation = reference::CascadeRelation::additive;
   InputSpec sum;
   bool is_cascade_set() const { return !cascades.empty(); }
-  // Cascade c as a case of its own: its grid and band, the random numbers of cascade c (an
-  // additive set) or of the one sea (nested: cascade key 0 for all).
+  // Cascade c as a case of its own: its grid, band and sea (its own, for an independent sea
+  // that declares one), the random numbers of cascade c (additive and independent sets) or of
+  // the one sea (nested: cascade key 0 for all).
   reference::OceanCase cascade_case(std::size_t c) const;
-  // The cascades as a summed surface sees them (grid, band, random-number key).
+  // The cascades as a summed surface sees them (grid, band, random-number key, and each
+  // independent sea's Ψ).
   std::vector<reference::CascadeMember> members() const;
-  // The summed surface of an additive set on the finest spacing over the largest patch, when
-  // the patch lengths allow (reference::summed_grid); nullopt otherwise (with the reason in `why`).
+  // The summed surface of an additive or independent set on the finest spacing over the largest
+  // patch, when the patch lengths allow (reference::summed_grid); nullopt otherwise (with the
+  // reason in `why`). An independent set's sum has every cascade's sea as its components.
   std::optional<reference::OceanCase> summed_case(std::string* why = nullptr) const;
 };
 
