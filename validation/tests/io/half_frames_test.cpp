@@ -59,7 +59,9 @@ TEST(HalfValues, TheTestAndTheDecoderAgreeOnEveryHalf) {
     const double v = swell::validation::half_bits_to_double(std::uint16_t(bits));
     if (!std::isfinite(v)) continue;
     EXPECT_TRUE(is_half_value(v)) << bits;
-    if (v != 0) EXPECT_EQ(half_bits(v), bits) << v;
+    if (v != 0) {
+      EXPECT_EQ(half_bits(v), bits) << v;
+    }
     ++halves;
   }
   EXPECT_EQ(halves, 0x10000 - 2 * 1024);  // less ±infinity and the NaNs
