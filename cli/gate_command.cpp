@@ -1,5 +1,6 @@
 // swell gate --case FILE [--input PATTERN] [--json FILE|-] [--junit FILE] [--alpha A]
 //            [--threads N] [--quiet]
+// swell gate --power --case FILE [--alpha A] [--json FILE|-]
 //
 // Judges another engine's frames against its case file (docs/gate.md): reads the frames the
 // case's [input] names (or --input), runs every check the given fields and frame count allow,
@@ -8,7 +9,8 @@
 // check), --json the same as JSON.
 //
 // Exit 0 when every check passes, 1 when one fails, 2 for bad input (a malformed case, a
-// missing or unreadable frame: the message names it).
+// missing or unreadable frame: the message names it). --power prints the gate's power table for
+// the case without reading frames (docs/gate.md §11), exit 0.
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -22,6 +24,7 @@
 #include "swell/reference/errors.hpp"
 #include "swell/validation/io/case_file.hpp"
 #include "swell/validation/gate/gate.hpp"
+#include "swell/validation/gate/power.hpp"
 
 namespace swell::cli {
 namespace {
@@ -34,6 +37,7 @@ struct GateCommandOptions {
   double alpha = 1e-3;
   int threads = 0;
   bool quiet = false;
+  bool power = false;
 };
 
 void write_text(const std::string& path, const std::string& text, const char* what) {
@@ -60,6 +64,20 @@ int run_gate_command(const GateCommandOptions& o) {
   for (const auto& [path, what] : {std::pair{o.junit, "JUnit XML"}, std::pair{o.json, "JSON"}}) {
     if (path.empty() || path == "-") continue;
     if (!writable(path)) throw InvalidInput(fmt::format("cannot write {} to '{}'", what, path));
+  }
+  if (o.power) {
+    if (!o.junit.empty() || !o.input.empty()) {
+      throw InvalidInput("--power reads no frames: it takes --case, --alpha, --threads and --json only");
+    }
+    validation::GateOptions options;
+    options.alpha = o.alpha;
+    options.threads = o.threads;
+    options.validate();
+    const auto case_file = validation::read_case_file(o.case_file);
+    const auto table = validation::gate_power(case_file, o.alpha, options.resolved_threads());
+    if (!o.json.empty()) write_json(o.json, validation::power_json(table));
+    if (o.json != "-") fmt::print("{}", validation::render_power(table));
+    return 0;
   }
   validation::GateReport report;
   try {
@@ -120,6 +138,9 @@ Action add_gate_command(CLI::App& app) {
   app.add_option("--threads", o->threads,
                  "threads for decoding and transforms (default 0: every hardware thread)");
   app.add_flag("--quiet", o->quiet, "no progress messages on standard error");
+  app.add_flag("--power", o->power,
+               "print the gate's power for the case without reading frames: the smallest error "
+               "of each kind it detects with 90 % power, and the check that does");
   app.footer(
       "Reads the frames (EXR, TIFF, PNG, .npy, .raw) and runs every check the fields allow: "
       "hermitian, parseval, energy (not with scale = \"free\"), spectrum, moments, dispersion "

@@ -85,6 +85,7 @@ GateReport judge_cascades(const CaseFile& case_file,
       report.fitted_scale = part.fitted_scale;
     }
     report.unit_roundoff = std::max(report.unit_roundoff, part.unit_roundoff);
+    report.storage_roundoff = std::max(report.storage_roundoff, part.storage_roundoff);
     samples.push_back(fmt::format("{} {}", name, part.samples));
     return std::move(part.results);
   };

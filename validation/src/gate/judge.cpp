@@ -11,6 +11,7 @@
 #include "swell/reference/sampling_validity.hpp"
 #include "swell/validation/checks/ocean_check_table.hpp"
 #include "swell/validation/checks/ocean_checks.hpp"
+#include "swell/validation/gate/power.hpp"
 #include "swell/validation/stats/periodogram.hpp"
 
 namespace swell::validation::gate_path {
@@ -93,6 +94,11 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
                                             : "their every value is a half",
         frames.storage_roundoff));
   }
+  // The gate's power on this case (a single surface: a cascade set shares α otherwise).
+  if (std::isnan(alpha_per_check)) {
+    report.power = gate_power(case_file, options.alpha, frames.unit_roundoff, frames.storage_roundoff,
+                              travelling_power);
+  }
   // Bad input (a grid that does not match, no height field) is thrown by the analysis.
   auto parts = run_ocean_check_groups(case_file.ocean, frames, check_options,
                                       ocean_check_groups_longest_first(),
@@ -104,6 +110,7 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
   }
   report.fitted_scale = parts.front().fitted_scale;
   report.unit_roundoff = frames.unit_roundoff;
+  report.storage_roundoff = frames.storage_roundoff;
   auto position = [](const std::string& check) {
     return check == kFittedScaleCheck ? 0 : ocean_check_position(check) + 1;
   };

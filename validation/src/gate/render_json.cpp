@@ -39,6 +39,8 @@ nlohmann::json gate_json(const GateReport& report) {
           {"statistical_checks", report.statistical_checks},
           {"fitted_scale", json_number(report.fitted_scale)},
           {"unit_roundoff", json_number(report.unit_roundoff)},
+          {"storage_roundoff", json_number(report.storage_roundoff)},
+          {"power", report.power ? power_json(*report.power) : nlohmann::json(nullptr)},
           {"checks", checks["checks"]},
           {"skipped", skipped},
           {"passed", checks["passed"]},

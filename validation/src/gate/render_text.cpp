@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "gate/report_text.hpp"
+#include "swell/validation/gate/power.hpp"
 #include "swell/validation/results/report.hpp"
 #include "swell/validation/results/text.hpp"
 
@@ -60,6 +61,7 @@ std::string render_gate(const GateReport& report) {
                        pad_to_width(row.measured, w_measured), pad_to_width(row.expected, w_expected),
                        pad_to_width(row.judged, w_judged), row.reason);
   }
+  if (report.power) out += "\n" + render_power(*report.power);
   const int failed = failed_count(report);
   const int total = int(report.results.size());
   std::string skipped = report.skipped.empty()

@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <numbers>
 #include <set>
@@ -17,6 +18,8 @@
 #include "swell/validation/io/case_file.hpp"
 #include "swell/validation/io/frame_io.hpp"
 #include "swell/validation/gate/gate.hpp"
+#include "swell/validation/gate/power.hpp"
+#include "swell/validation/gate/render.hpp"
 #include "swell/validation/checks/ocean_checks.hpp"
 #include "gate/gate_cases.hpp"
 #include "half_rounding.hpp"
@@ -402,6 +405,124 @@ TEST(OneCause, AnUndeclaredSpreadingMixIsNotCalledNonGaussian) {
   }
   EXPECT_FALSE(result_of(report, "direction.distribution").passed) << describe(report);
   std::cout << "[ one cause ] mix: " << gaussian.reason << "\n";
+}
+
+// ------------------------------------------------------------------ the gate's power
+
+// The power table's sizes against measured detection (label "calibration"): 20 seeds of the test
+// engine (an implementation independent of the checks) with each statistical error at its
+// predicted size are detected by the named check at 90 % — between 13 and 20 of 20 (the binomial
+// 0.999 range of 0.9; 20 of 20 has probability 0.12). The exact checks' sizes are thresholds:
+// 1.5× the size fails every seed, 0.5× passes every one.
+TEST(PowerCalibration, PredictedSizesAreDetectedAtTheirPower) {
+  const OceanCase c = catalogue_case();
+  const CaseFile file = as_case_file(c);
+  const double alpha = 1e-3;
+  const auto table = swell::validation::gate_power(
+      file, alpha, 0x1p-53, 0, swell::validation::expected_travelling_power(c));
+  std::cout << swell::validation::render_power(table);
+  auto line_of = [&](const std::string& error) {
+    for (const auto& line : table.lines) {
+      if (line.error == error) return line;
+    }
+    ADD_FAILURE() << "no power line " << error;
+    return swell::validation::PowerLine{};
+  };
+  GateOptions options;
+  options.alpha = alpha;
+  const int seeds = 20;
+  // Renders the engine `engine_of(seed)` (scaled in energy by `factor`), judges it against the
+  // case, and counts the seeds where `check` fails.
+  auto detections = [&](const std::function<OceanCase(unsigned)>& engine_of, const std::string& check,
+                        double factor = 1.0, int count = 0) {
+    int detected = 0;
+    for (int s = 0; s < (count > 0 ? count : seeds); ++s) {
+      OceanCase declared = c;
+      declared.seed = 9100 + s;
+      const OceanCase engine = engine_of(declared.seed);
+      auto frames = swell::test::render_surface(engine);
+      if (factor != 1.0) scale_energy(frames, factor);
+      // Stamped with the declared times, as frames read from files are (an engine with another
+      // time step renders its own).
+      for (int f = 0; f < int(frames.frames.size()); ++f) frames.frames[std::size_t(f)].time = declared.time(f);
+      const auto report = swell::validation::run_gate(as_case_file(declared), frames, options);
+      bool failed = false;
+      for (const auto& r : report.results) failed |= !r.passed && r.check.rfind(check, 0) == 0;
+      detected += failed;
+    }
+    return detected;
+  };
+  auto same = [&](unsigned seed) {
+    OceanCase e = c;
+    e.seed = seed;
+    return e;
+  };
+  const auto energy = line_of("energy factor");
+  const int energy_hits = detections(same, energy.check == "energy" ? "energy" : "spectrum.shape", energy.above);
+  const auto offset = line_of("mean direction offset");
+  const int offset_hits = detections([&](unsigned seed) {
+    OceanCase e = same(seed);
+    e.wind_dir_deg += offset.above;
+    return e;
+  }, "direction.distribution");
+  const auto spreading = line_of("spreading s");
+  const int spreading_hits = detections([&](unsigned seed) {
+    OceanCase e = same(seed);
+    e.spreading.numbers["s"] = spreading.above;
+    return e;
+  }, "direction.distribution");
+  const auto gamma = line_of("JONSWAP γ");
+  const int gamma_hits = detections([&](unsigned seed) {
+    OceanCase e = same(seed);
+    e.spectrum.numbers["gamma"] = gamma.above;
+    return e;
+  }, "spectrum.shape");
+  std::cout << "[ power ] at the predicted sizes, detected in " << seeds << " seeds: energy × " << energy.above
+            << ": " << energy_hits << "; direction + " << offset.above << "°: " << offset_hits << "; s = "
+            << spreading.above << ": " << spreading_hits << "; γ = " << gamma.above << ": " << gamma_hits << "\n";
+  for (int hits : {energy_hits, offset_hits, spreading_hits, gamma_hits}) {
+    EXPECT_GE(hits, 13);
+  }
+  // Exact checks: ω (through g: ω ∝ √g), λ and the time step at 1.5× and 0.5× their sizes, on
+  // 5 seeds (their verdicts do not depend on the seed's draw).
+  const int exact_seeds = 5;
+  const auto omega = line_of("ω, relative, on every wave");
+  const auto lambda = line_of("choppiness λ");
+  for (double times : {1.5, 0.5}) {
+    const int omega_hits = detections([&](unsigned seed) {
+      OceanCase e = same(seed);
+      e.gravity *= std::pow(1 + times * omega.above, 2);
+      return e;
+    }, "dispersion", 1.0, exact_seeds);
+    const int lambda_hits = detections([&](unsigned seed) {
+      OceanCase e = same(seed);
+      e.choppiness *= 1 + times * lambda.above;
+      return e;
+    }, "derived.disp_x", 1.0, exact_seeds);
+    const int dt_hits = detections([&](unsigned seed) {
+      OceanCase e = same(seed);
+      e.dt *= 1 + times * omega.above;
+      return e;
+    }, "dispersion", 1.0, exact_seeds);
+    std::cout << "[ power ] at " << times << "× the exact sizes: ω " << omega_hits << ", λ " << lambda_hits
+              << ", dt " << dt_hits << " of " << exact_seeds << "\n";
+    const int expected = times > 1 ? exact_seeds : 0;
+    EXPECT_EQ(omega_hits, expected);
+    EXPECT_EQ(lambda_hits, expected);
+    EXPECT_EQ(dt_hits, expected);
+  }
+}
+
+// Every gate report carries the table; --power prints it without frames (cli tests).
+TEST(GatePower, EveryReportCarriesTheTable) {
+  const OceanCase c = catalogue_case();
+  const auto report = swell::validation::run_gate(as_case_file(c), swell::test::render_surface(c), GateOptions{});
+  ASSERT_TRUE(report.power.has_value());
+  EXPECT_EQ(report.power->lines.size(), 7u);
+  EXPECT_EQ(report.power->precision, "double");
+  const std::string text = swell::validation::render_gate(report);
+  EXPECT_NE(text.find("Power: the smallest error the gate detects with 90 % power"), std::string::npos);
+  EXPECT_FALSE(swell::validation::gate_json(report)["power"].is_null());
 }
 
 // ------------------------------------------------------------------ half precision

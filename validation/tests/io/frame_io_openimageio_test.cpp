@@ -75,7 +75,9 @@ TEST_F(FrameIo, ForeignTiffChannelsByPositionOrByGenericName) {
                  {"foreign_0.tif", "missing channel 'a'", "R, G"});
 }
 
-TEST_F(FrameIo, HalfExrChannelsSetTheUnitRoundoff) {
+// Half channels are half storage (docs/conventions.md §2.3): float32 arithmetic, one ulp (2⁻¹⁰)
+// per stored value.
+TEST_F(FrameIo, HalfExrChannelsAreReadAsHalfStorage) {
   auto out = OIIO::ImageOutput::create(file("half_0000.exr"));
   OIIO::ImageSpec spec(kNx, kNy, 1, OIIO::TypeDesc::HALF);
   spec.channelnames = {"h"};
@@ -88,7 +90,8 @@ TEST_F(FrameIo, HalfExrChannelsSetTheUnitRoundoff) {
   input.files = "half_%04d.exr";
   input.channels = {{Field::height, "h"}};
   const auto back = read_frames(case_for(dir_, input, 1));
-  EXPECT_EQ(back.unit_roundoff, 0x1p-11);
+  EXPECT_EQ(back.unit_roundoff, 0x1p-24);
+  EXPECT_EQ(back.storage_roundoff, 0x1p-10);
   EXPECT_EQ(back.frames[0].fields.at(Field::height), std::vector<double>(values.begin(), values.end()));
 }
 

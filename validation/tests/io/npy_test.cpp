@@ -387,7 +387,8 @@ TEST_F(Npy, UnsupportedLayoutsAndDtypes) {
   expect_rejected(with("big.npy", "'>f8'", "False", "(3,)"), {"big-endian", "'>f8'"});
   expect_rejected(with("int.npy", "'<i4'", "False", "(6,)"),
                   {"unsupported dtype '<i4'", "'<f4'", "'<f8'", "'<c8'", "'<c16'"});
-  expect_rejected(with("half.npy", "'<f2'", "False", "(12,)"), {"unsupported dtype"});
+  expect_rejected(with("big_half.npy", "'>f2'", "False", "(12,)"), {"big-endian", "'>f2'", "'<f2'"});
+  expect_rejected(with("long_double.npy", "'<f16'", "False", "(1,)"), {"unsupported dtype"});
   expect_rejected(with("quad.npy", "'<c32'", "False", "(1,)"), {"unsupported dtype"});
   expect_rejected(with("pipe.npy", "'|f8'", "False", "(3,)"), {"'|f8'", "'<f8'"});
   expect_rejected(with("native.npy", "'=f8'", "False", "(3,)"), {"'=f8'", "'<f8'"});

@@ -76,6 +76,10 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
     ++used;
   }
   for (double& v : mean_g) v /= std::max(used, 1);
+  // u at the frames' measured level L (MeasuredLevel): a scale error alone makes u ~ L Exp(1),
+  // whose (u − 1) would score a direction where there is none.
+  const MeasuredLevel& level = a.measured_level();
+  const double scale = level.rings >= 4 && level.level > 0 ? level.level : 1.0;
   std::array<double, 4> d{};
   std::array<std::array<double, 4>, 4> cov{};
   Complex measured_resultant = 0, expected_resultant = 0;
@@ -89,7 +93,7 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
     auto g = harmonics(e.theta);
     for (int i = 0; i < 4; ++i) g[i] -= mean_g[i];
     for (int i = 0; i < 4; ++i) {
-      d[i] += (e.power / e.tau - 1) * g[i];
+      d[i] += (e.power / (scale * e.tau) - 1) * g[i];
       for (int j = 0; j < 4; ++j) cov[i][j] += g[i] * g[j];
     }
   }
@@ -142,10 +146,8 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
                              "ways (one-sided spreading)"});
     return out;
   }
-  // Normalized by the frames' measured level L (MeasuredLevel): Re(a b) scales with the
-  // spectrum, so a scale error alone would make z ~ N(0, L²); this check judges the pairing.
-  const MeasuredLevel& level = a.measured_level();
-  const double scale = level.rings >= 4 && level.level > 0 ? level.level : 1.0;
+  // Normalized by the frames' measured level L, as above: Re(a b) scales with the spectrum, so a
+  // scale error alone would make z ~ N(0, L²); this check judges the pairing.
   const double z = sum / (scale * std::sqrt(double(count)));
   const double p_travel = stats::normal_two_sided_p(z);
   out.push_back(statistical_check(

@@ -144,6 +144,10 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   // tails where a handful of waves carry the energy (a narrow swell on a small grid).
   // The stored values' rounding moves each m0 by at most this (a bound, taken off |Δm0|).
   const double rounding = rounding_budget(kTransformRounding, a.unit_roundoff(), a.log2n()) * m0_first;
+  // Δm0 at the frames' measured level L (MeasuredLevel): a scale error alone multiplies every
+  // change by L, which is energy's to name, not a drift.
+  const MeasuredLevel& level = a.measured_level();
+  const double level_scale = level.rings >= 4 && level.level > 0 ? level.level : 1.0;
   double worst_p = 1;
   std::vector<Complex> phase;     // e^(−2iωt) per distinct ω of frame f
   std::vector<double> coefficients;  // ±w per wave, frame by frame (2 × waves doubles, not × frames)
@@ -162,12 +166,12 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
       variance += 2 * weight * weight;
     }
     const double m0 = sums[f] / n;  // mean_square of frame f
-    const double change = std::max(0.0, std::abs(m0 - m0_first) - rounding);
+    const double change = std::max(0.0, std::abs(m0 - m0_first) - rounding) / level_scale;
     // The law is symmetric: P(|D| ≥ d) = 2 P(D ≤ −d). No wave changes (every ω t the same
     // mod π): only rounding may move m0.
     const double p = coefficients.empty() ? (change > 0 ? 0.0 : 1.0)
                                           : std::min(1.0, 2 * stats::mixed_exponential_sum_cdf(coefficients, -change));
-    const double z = variance > 0 ? (m0 - m0_first) / std::sqrt(variance) : (change > 0 ? INFINITY : 0.0);
+    const double z = variance > 0 ? (m0 - m0_first) / (level_scale * std::sqrt(variance)) : (change > 0 ? INFINITY : 0.0);
     if (p <= worst_p) {
       worst_p = p;
       worst_z = z;

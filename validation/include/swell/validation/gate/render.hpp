@@ -10,7 +10,7 @@ namespace swell::validation {
 // One line per check and a verdict line, for the terminal.
 std::string render_gate(const GateReport& report);
 // {"case", "subject", "frames", "nx", "ny", "fields", "alpha", "alpha_per_check",
-//  "statistical_checks", "fitted_scale", "unit_roundoff", "checks": [report.hpp's to_json entries],
+//  "statistical_checks", "fitted_scale", "unit_roundoff", "storage_roundoff", "checks": [report.hpp's to_json entries],
 //  "skipped": [{"check", "reason"}], "passed", "failed", "seconds", "pass"}; strings as valid
 // UTF-8 (malformed bytes become U+FFFD), non-finite numbers null.
 nlohmann::json gate_json(const GateReport& report);

@@ -1,8 +1,10 @@
 #pragma once
 // A gate's verdict: what was judged, at which α, each check's result and what was skipped.
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "swell/validation/gate/power.hpp"
 #include "swell/validation/results/check_result.hpp"
 
 namespace swell::validation {
@@ -20,6 +22,10 @@ struct GateReport {
   std::vector<Skipped> skipped;        // checks that could not run, with the reason
   double fitted_scale = 1;             // free-scale cases: the engine's spectrum over the case's
   double unit_roundoff = 0;            // of the values read (FrameSequence::unit_roundoff)
+  double storage_roundoff = 0;         // half frames' one ulp, 2⁻¹⁰ (FrameSequence::storage_roundoff)
+  // The gate's power on this case (power.hpp): a single surface's gate; empty for a probes case
+  // or a cascade set.
+  std::optional<PowerTable> power;
   double seconds = 0;                  // wall time of reading and judging
   double read_seconds = 0;             // of which reading the case and its frames
   // What the case's sea is, where a table made it: the share of the table's m0 the sampling
