@@ -95,7 +95,7 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
         frames.storage_roundoff));
   }
   // The gate's power on this case (a single surface: a cascade set shares α otherwise).
-  if (std::isnan(alpha_per_check)) {
+  if (options.power && std::isnan(alpha_per_check)) {
     report.power = gate_power(case_file, options.alpha, frames.unit_roundoff, frames.storage_roundoff,
                               travelling_power);
   }

@@ -99,12 +99,25 @@ Setup make_setup(const CaseFile& case_file, double alpha, double unit_roundoff,
   return s;
 }
 
-// The smallest x in [low, high] where `detects(x)` holds, by bisection in log x (detection grows
-// with the error); NaN when even `high` is not detected.
+// The smallest x in [low, high] where `detects(x)` holds (to 0.3 %): the first of 17 sizes spaced evenly in
+// log x that is detected, then bisection in log x below it (detection grows with the error up to
+// there; past it a symmetric sea can look right again — Phillips' cos² turned by 180°). NaN when
+// none is detected.
 double smallest_detected(double low, double high, const std::function<bool(double)>& detects) {
-  if (!detects(high)) return std::numeric_limits<double>::quiet_NaN();
-  if (detects(low)) return low;
-  for (int i = 0; i < 40 && high / low > 1.0005; ++i) {
+  constexpr int kSteps = 16;
+  double previous = low;
+  bool found = false;
+  for (int i = 0; i <= kSteps; ++i) {
+    const double x = low * std::pow(high / low, double(i) / kSteps);
+    if (detects(x)) {
+      if (i == 0) return low;
+      low = previous, high = x, found = true;
+      break;
+    }
+    previous = x;
+  }
+  if (!found) return std::numeric_limits<double>::quiet_NaN();
+  for (int i = 0; i < 40 && high / low > 1.003; ++i) {
     const double middle = std::sqrt(low * high);
     (detects(middle) ? high : low) = middle;
   }
@@ -335,8 +348,6 @@ double dispersion_fraction(const Setup& s, const std::vector<const Wave*>& waves
   return energy > 0 ? left / energy : 0;
 }
 
-std::string format_size(double x) { return std::isnan(x) ? "none" : fmt::format("{:.3g}", x); }
-
 }  // namespace
 
 PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_roundoff,
@@ -367,7 +378,8 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
     });
     PowerLine line;
     line.error = "energy factor";
-    double up = shape_up, down = shape_down;
+    double up = absolute ? shape_up : std::numeric_limits<double>::quiet_NaN();
+    double down = absolute ? shape_down : std::numeric_limits<double>::quiet_NaN();
     std::string up_check = "spectrum.shape", down_check = "spectrum.shape";
     if (absolute) {
       const stats::WeightedExponentialSum law(s.half_plane_weights);
@@ -378,13 +390,16 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
       if (!(energy_down <= down)) down = energy_down, down_check = "energy";
     }
     line.above = up, line.below = down;
-    line.smallest = fmt::format("× {} or × {}", format_size(up), format_size(down));
+    line.smallest = absolute ? fmt::format("× {:.4g} or × {:.4g}", up, down)
+                             : "n/a (scale = \"free\": the gate fits the scale)";
+    if (!absolute) up_check = down_check = "";
     line.check = up_check == down_check ? up_check : up_check + " (above), " + down_check + " (below)";
     line.method = up_check == "energy" && down_check == "energy"
                       ? "closed form"
                       : fmt::format("{}simulation ({} draws of {} rings)",
                                     up_check == "energy" || down_check == "energy" ? "closed form and " : "",
                                     kShapeDraws, shape.rings());
+    if (!absolute) line.method.clear();
     table.lines.push_back(line);
 
     // γ: spectrum.shape against the case's spectrum with γ' (its μ'/μ at each wave).
@@ -413,8 +428,7 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
                               : std::numeric_limits<double>::quiet_NaN();
       gamma.above = gamma0 * up;
       gamma.below = gamma0 / down;
-      gamma.smallest = fmt::format("γ ≥ {} or ≤ {} (the case's {:g})", format_size(gamma.above),
-                                   format_size(gamma.below), gamma0);
+      gamma.smallest = fmt::format("γ ≥ {:.4g} or ≤ {:.4g} (the case's {:g})", gamma.above, gamma.below, gamma0);
       gamma.check = "spectrum.shape";
       gamma.method = fmt::format("simulation ({} draws of {} rings)", kShapeDraws, shape.rings());
     }
@@ -434,9 +448,22 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
     std::sort(strongest.begin(), strongest.end(), [](const Wave* x, const Wave* y) {
       return x->tau_plus + x->tau_minus > y->tau_plus + y->tau_minus;
     });
-    if (strongest.size() > kMostEntries) strongest.resize(kMostEntries);
+    constexpr std::size_t kMostWaves = 4000;
+    if (strongest.size() > kMostWaves) strongest.resize(kMostWaves);
     std::sort(strongest.begin(), strongest.end(), [](const Wave* x, const Wave* y) { return x->omega < y->omega; });
-    epsilon = smallest_detected(1e-16, 0.5, [&](double e) { return dispersion_fraction(s, strongest, e) > bound; });
+    // The fraction grows as ε² while εωT ≪ 1 (T the frames' span): from ε = 10⁻⁶, a few steps of
+    // ε ← ε √(bound/fraction) reach the ε where it meets the bound (to 0.1 %).
+    double e = 1e-6;
+    for (int i = 0; i < 12; ++i) {
+      const double fraction = dispersion_fraction(s, strongest, e);
+      if (!(fraction > 0)) break;
+      const double step = std::sqrt(bound / fraction);
+      e = std::min(0.5, e * step);
+      if (std::abs(step - 1) < 1e-3) {
+        epsilon = e;
+        break;
+      }
+    }
     omega_check = "dispersion.residual";
     double dt = 0;
     for (std::size_t f = 1; f < s.times.size(); ++f) dt = std::max(dt, s.times[f] - s.times[f - 1]);
@@ -485,7 +512,7 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
                }) >= kPower;
       });
       line.above = offset, line.below = -offset;
-      line.smallest = fmt::format("{}°", format_size(offset));
+      line.smallest = std::isnan(offset) ? "none up to 180°" : fmt::format("{:.3g}°", offset);
       line.check = "direction.distribution";
       line.method = fmt::format("simulation ({} draws of the score)", kDirectionDraws);
     }
@@ -512,8 +539,7 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
       const double up = smallest_detected(1.001, 100, [&](double q) { return detects(s0 * q); });
       const double down = smallest_detected(1.001, 100, [&](double q) { return detects(s0 / q); });
       line.above = s0 * up, line.below = s0 / down;
-      line.smallest = fmt::format("s ≥ {} or ≤ {} (the case's {:g})", format_size(line.above),
-                                  format_size(line.below), s0);
+      line.smallest = fmt::format("s ≥ {:.4g} or ≤ {:.4g} (the case's {:g})", line.above, line.below, s0);
       line.check = "direction.distribution";
       line.method = fmt::format("simulation ({} draws of the score)", kDirectionDraws);
     }

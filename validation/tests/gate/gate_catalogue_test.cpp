@@ -430,6 +430,7 @@ TEST(PowerCalibration, PredictedSizesAreDetectedAtTheirPower) {
   };
   GateOptions options;
   options.alpha = alpha;
+  options.power = false;  // verdicts only
   const int seeds = 20;
   // Renders the engine `engine_of(seed)` (scaled in energy by `factor`), judges it against the
   // case, and counts the seeds where `check` fails.
@@ -635,6 +636,7 @@ TEST(GateCalibration, FamilyWiseFalseAlarmRateOverTwoHundredSeeds) {
       auto frames = swell::impls::Synthesizer(c, {"fftw", swell::impls::Precision::f32}).frames();
       GateOptions options;
       options.alpha = alpha;
+      options.power = false;  // verdicts only
       const auto report = swell::validation::run_gate(as_case_file(c), frames, options);
       EXPECT_NEAR(report.alpha_per_check * report.statistical_checks, alpha, 1e-12 * alpha);
       failed += !report.passed();
@@ -722,6 +724,7 @@ TEST(GateCalibration, SixteenBitPngFalseAlarmRateOverTwoHundredSeeds) {
     swell::validation::write_case_file(directory / "case.toml", case_file);
     GateOptions options;
     options.alpha = alpha;
+    options.power = false;  // verdicts only
     const auto report = swell::validation::run_gate(directory / "case.toml", options);
     failed += !report.passed();
     largest_roundoff = std::max(largest_roundoff, report.unit_roundoff);

@@ -748,6 +748,25 @@ TEST_F(GateCli, BadOptionsAreFoundBeforeAnyFrameIsRead) {
   }
 }
 
+// --power prints the table from the case alone: its frames need not exist. It refuses the
+// options that read frames.
+TEST_F(GateCli, PowerPrintsTheTableWithoutFrames) {
+  write_engine_frames(EngineBug::none, FrameFormat::exr, 3);
+  fs::remove_all(dir_ / "frames");
+  const CliRun run = swell("gate --power --case " + path("case.toml") + " --json " + path("power.json"));
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  for (const char* line : {"energy factor", "ω, relative, on every wave", "mean direction offset", "spreading s",
+                           "JONSWAP γ", "choppiness λ", "time step"}) {
+    EXPECT_TRUE(contains(run.output, line)) << line << ": " << run.output;
+  }
+  const auto json = nlohmann::json::parse(read_text(path("power.json")));
+  EXPECT_EQ(json["lines"].size(), 7u);
+  EXPECT_EQ(json["precision"], "float");
+  const CliRun refused = swell("gate --power --case " + path("case.toml") + " --junit " + path("junit.xml"));
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "--power reads no frames")) << refused.output;
+}
+
 TEST_F(GateCli, AMissingFrameIsBadInputWithExitTwoAndAJunitError) {
   write_engine_frames(EngineBug::none, FrameFormat::exr, 3);
   fs::remove(dir_ / "frames" / "frame_0002.exr");

@@ -14,6 +14,10 @@ struct GateOptions {
   // Called with a one-line message ("reading 64 frames of 512×512…") as the gate goes; unset:
   // silent. The CLI prints them on standard error.
   std::function<void(const std::string&)> progress;
+  // Whether a single surface's report carries the gate's power table (power.hpp; about 0.3 s of
+  // simulation whatever the grid). Loops that judge many surfaces only for their verdicts (a
+  // false-alarm calibration) turn it off.
+  bool power = true;
 
   // Throws InvalidInput naming the option when α is outside (0, 1) or threads is negative.
   void validate() const;
