@@ -164,6 +164,8 @@ class WaveSeries {
 struct FrameStray {
   double energy = 0;
   double corner = 0;       // of it, within a quarter of the Nyquist corner on both axes (grids)
+  double nyquist = 0;      // of it, on a grid's Nyquist row and column
+  double empty = 0;        // of it, where μ is exactly 0 (k = 0, the Nyquist row and column, …)
   double largest = 0;      // the largest single entry's power,
   std::size_t largest_at = 0;  // and its position in FFT order
   double mean_level = 0;   // ĥ(0): the frame's mean level, m
@@ -348,6 +350,7 @@ class Analysis {
         for (std::size_t e : shared_->stray) {
           const double power = std::norm(coefficient(e));
           s.energy += power;
+          if (!(shared_->mu[e] > 0)) s.empty += power;
           if (power > s.largest) {
             s.largest = power;
             s.largest_at = e;
@@ -355,6 +358,7 @@ class Analysis {
           if (grid) {
             const auto [n, m] = sampling_.wave_index(e);
             if (std::abs(n) >= sampling_.grid().nx / 4 && std::abs(m) >= sampling_.grid().ny / 4) s.corner += power;
+            if (Grid::is_nyquist(n, sampling_.grid().nx) || Grid::is_nyquist(m, sampling_.grid().ny)) s.nyquist += power;
           }
         }
         s.mean_level = coefficient(0).real();

@@ -114,6 +114,45 @@ std::string explain_derived(const Analysis& a, Field field, std::size_t frame, d
                   "into each other there)"
                 : "");
   }
+  // A normal map's slope: ∂h/∂x of the displaced surface, ∂h/∂x / (1 + λ∂Dx/∂x) — what an engine
+  // that derives its normals after displacing (and stores them as slopes) hands over; with or
+  // without the absolute value some engines take. Fitted in space (the division is no
+  // multiplier), on the whole field; named where it explains the field and at least twice as
+  // closely as the best linear template.
+  if (!displacement) {
+    const double choppiness = a.ocean_case().choppiness;
+    std::vector<Complex> slope(got.size()), stretch(got.size());
+    for (std::size_t e = 0; e < got.size(); ++e) {
+      if (!g.carries_energy(e)) continue;
+      const auto [n, m] = g.wave_index(e);
+      const double kx = n * g.dkx(), ky = m * g.dky(), k = std::hypot(kx, ky);
+      const double component = along_x ? kx : ky;
+      slope[e] = Complex(0, component) * height[e];
+      stretch[e] = -choppiness * component * component / k * height[e];
+    }
+    const auto s = field_from_spectrum(slope, g), d = field_from_spectrum(stretch, g);
+    const auto& field_values = a.frames().field(int(frame), field);
+    for (bool absolute : {true, false}) {
+      double tt = 0, tg = 0, gg = 0;
+      std::vector<double> t(s.size());
+      for (std::size_t p = 0; p < s.size(); ++p) {
+        t[p] = s[p] / (1 + (absolute ? std::abs(d[p]) : d[p]));
+        tt += t[p] * t[p];
+        tg += t[p] * field_values[p];
+        gg += field_values[p] * field_values[p];
+      }
+      const double c = tt > 0 ? tg / tt : 0;
+      double left = 0;
+      for (std::size_t p = 0; p < s.size(); ++p) left += std::pow(field_values[p] - c * t[p], 2);
+      const double residual = gg > 0 ? std::sqrt(left / gg) : 1;
+      if (residual <= explains && residual < 0.5 * best.residual && std::abs(c - 1) < 0.05) {
+        return fmt::format("{} is a normal map's slope: ∂h/∂{} of the displaced surface, divided by "
+                           "1 + {}∂D{}/∂{}{} (it explains the field to {:.1e}), not ∂h/∂{} at the grid point",
+                           name, along_x ? "x" : "y", absolute ? "|" : "", along_x ? "x" : "y",
+                           along_x ? "x" : "y", absolute ? "|" : "", residual, along_x ? "x" : "y");
+      }
+    }
+  }
   const std::string factor_name = displacement ? "λ" : "scale";
   if (lambda == 0) {
     // The case declares no displacement (docs/conventions.md: λ = 0).

@@ -85,8 +85,11 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
   }
   const auto& strays = a.frame_strays();
   const double frames = double(strays.size());
+  // At the frames' measured level (MeasuredLevel): what μ puts below the floor scales with the
+  // sea, and a scale error is energy's to name, not stray energy.
+  const double level_scale = level.rings >= 4 && level.level > 0 ? level.level : 1.0;
   const double sampling_bound =
-      weights.empty() ? 0.0 : stats::WeightedExponentialSum(weights).quantile(1 - alpha / frames);
+      weights.empty() ? 0.0 : level_scale * stats::WeightedExponentialSum(weights).quantile(1 - alpha / frames);
   // The field's own rounding (u per value, amplified by log2 N through a transform) may all
   // land there.
   // land there; and all of the storage's (half: at most storage² of the energy).
@@ -107,6 +110,12 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
   std::string where = fmt::format("largest at (n, m) = ({}, {})", stray_n, stray_m);
   if (grid && (Grid::is_nyquist(stray_n, g.nx) || Grid::is_nyquist(stray_m, g.ny))) {
     where += ", the Nyquist row/column";
+  } else if (grid && s.nyquist > bound) {
+    // Spread thin over 2n entries, a filled Nyquist row and column is rarely the largest single
+    // entry; alone it exceeds the bound, where the case puts nothing.
+    where += fmt::format("; the Nyquist row and column alone carry {:.2g} of the energy, more than "
+                         "the whole bound",
+                         s.nyquist / std::max(s.mean_square, 1e-300));
   }
   if (!grid && s.largest_at != 0 && sampling.conjugate(s.largest_at) == s.largest_at) {
     where += ", the lattice's self-conjugate class N/2";
@@ -155,6 +164,47 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
       ok ? fmt::format("{:.1e} of the energy where the case puts none{}", s.energy / s.mean_square, frame_note)
          : fmt::format("{:.3g} of the energy sits where the case puts none{} ({})",
                        s.energy / s.mean_square, frame_note, where)));
+
+  // Where the case puts exactly nothing (μ = 0: k = 0, a grid's Nyquist row and column, bins a
+  // band or spreading leaves empty) only rounding may land, in every frame: an exact check, so
+  // a filled Nyquist row is seen even where the unresolved waves' own sampling scatter (half
+  // storage leaves many) would hide it in the sum above.
+  std::size_t worst_empty = 0, failing_empty = 0;
+  auto empty_bound = [&](const FrameStray& x) { return rounding_share * x.mean_square; };
+  for (std::size_t f = 0; f < strays.size(); ++f) {
+    const double ratio = strays[f].empty / std::max(empty_bound(strays[f]), 1e-300);
+    if (ratio > strays[worst_empty].empty / std::max(empty_bound(strays[worst_empty]), 1e-300)) worst_empty = f;
+    failing_empty += strays[f].empty > empty_bound(strays[f]);
+  }
+  const FrameStray& e = strays[worst_empty];
+  const double e_bound = empty_bound(e), e_square = std::max(e.mean_square, 1e-300);
+  const bool empty_ok = e.empty <= e_bound;
+  std::string empty_where;
+  if (!empty_ok) {
+    const double level_power = e.mean_level * e.mean_level;
+    if (grid && e.nyquist >= 0.5 * e.empty) {
+      empty_where = fmt::format("the Nyquist row and column carry {:.2g} of it — a Nyquist bin filled (the "
+                                "conventions leave it empty), or two fields packed in one complex "
+                                "transform leaking there",
+                                e.nyquist / e_square);
+    } else if (level_power >= 0.5 * e.empty) {
+      empty_where = fmt::format("k = 0 carries {:.2g} of it: the mean level sits at {:.3g} m (heave, "
+                                "spectrum.unexpected_energy)",
+                                level_power / e_square, e.mean_level);
+    } else {
+      empty_where = "wave vectors where the case's spectrum is zero";
+    }
+  }
+  const std::string empty_note =
+      strays.size() == 1 ? ""
+      : empty_ok         ? fmt::format(" (worst of {} frames: frame {})", strays.size(), worst_empty)
+                         : fmt::format(" at frame {} ({} of {} frames fail)", worst_empty, failing_empty, strays.size());
+  out.push_back(bounded_check(
+      "spectrum.empty_energy", a.subject(), e.empty / e_square, e_bound / e_square,
+      fmt::format("fraction of mean h² where μ = 0 ≤ {:.1e} in every frame (rounding)", e_bound / e_square),
+      empty_ok ? fmt::format("{:.1e} of the energy where the case puts exactly none{}", e.empty / e_square, empty_note)
+               : fmt::format("{:.3g} of the energy sits where the case puts exactly none{}: {}", e.empty / e_square,
+                             empty_note, empty_where)));
   return out;
 }
 
