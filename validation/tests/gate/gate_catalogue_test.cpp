@@ -12,6 +12,7 @@
 #include <functional>
 #include <iostream>
 #include <numbers>
+#include <regex>
 #include <set>
 
 #include "swell/impls/synthesizer.hpp"
@@ -540,6 +541,33 @@ TEST(HalfPrecision, TheRightEnginePassesInHalf) {
     bool noted = false;
     for (const auto& note : report.notes) noted |= note.find("half precision") != std::string::npos;
     EXPECT_TRUE(noted);
+  }
+}
+
+// No reason contradicts itself: "λ is 0.8, not the case's 0.8", "× 1 …, not 1" — a number and the
+// case's number that print the same. Over the catalogue, the Godot conventions and half frames.
+TEST(HalfPrecision, NoReasonContradictsItself) {
+  const std::regex contradiction(R"(is ([-0-9.e+]+), not the case's \1\b)");
+  auto scan = [&](const GateReport& report, const std::string& what) {
+    for (const auto& r : report.results) {
+      EXPECT_FALSE(std::regex_search(r.reason, contradiction)) << what << ": " << r.check << ": " << r.reason;
+    }
+  };
+  const OceanCase c = catalogue_case();
+  for (EngineBug bug : swell::test::all_engine_bugs()) {
+    if (!swell::test::engine_bug_applies(bug, c)) continue;
+    for (bool half : {false, true}) {
+      auto frames = swell::test::render_surface(c, bug);
+      if (half) swell::test::store_in_half(frames, true);
+      GateOptions options;
+      options.power = false;  // the reasons only
+      try {
+        scan(swell::validation::run_gate(as_case_file(c), frames, options), swell::test::to_string(bug));
+      } catch (const swell::InvalidInput& e) {
+        std::cout << "[ half ] " << swell::test::to_string(bug) << (half ? " in half" : "") << ": " << e.what() << "\n";
+        throw;
+      }
+    }
   }
 }
 

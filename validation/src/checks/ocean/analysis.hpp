@@ -249,8 +249,10 @@ class Analysis {
     floor_ = resolution_floor(u_, mean_square0_, count_);
     // Half storage: its rounding, at most storage_² of the energy, white over the wave vectors,
     // moves a resolved one's periodogram by < 10⁻⁴ relative — far below what a statistical check
-    // sees even summed over 10⁶ wave vectors (relative 10⁻³).
-    floor_ = std::max(floor_, 1e4 * storage_ * storage_ * mean_square0_ / double(count_));
+    // sees even summed over 10⁶ wave vectors (relative 10⁻³). Relative to the case's energy: the
+    // frames' own (mean h²) over their level (mean h² / Σμ), so that a scale error in the frames
+    // does not move which waves are resolved.
+    floor_ = std::max(floor_, 1e4 * storage_ * storage_ * expected_total / double(count_));
 
     const double dkx = sampling_.dkx(), dky = sampling_.dky();
     // Room for every wave vector of the half plane at once (about half the samples): grown by
@@ -304,7 +306,7 @@ class Analysis {
     if (shared_->resolved.empty()) {
       const bool rounding_hides_all = std::any_of(
           shared_->half_plane.begin(), shared_->half_plane.end(), [](const Wave& w) { return w.mu > 0; });
-      if (rounding_hides_all) throw_rounding_hides_every_wave(u_, c_);  // coarse integer frames
+      if (rounding_hides_all) throw_rounding_hides_every_wave(std::max(u_, storage_), c_);  // coarse integer frames
       throw InvalidInput("no wave vector of the sampling carries resolvable energy under the case's "
                          "spectrum (" + c_.describe() + ")");
     }
