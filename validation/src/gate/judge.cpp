@@ -96,8 +96,14 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
   }
   // The gate's power on this case (a single surface: a cascade set shares α otherwise).
   if (options.power && std::isnan(alpha_per_check)) {
-    report.power = gate_power(case_file, options.alpha, frames.unit_roundoff, frames.storage_roundoff,
-                              travelling_power);
+    // A table the case's sampling cannot support (no resolved wave) is a note, never bad input:
+    // the frames are still judged.
+    try {
+      report.power = gate_power(case_file, options.alpha, frames.unit_roundoff, frames.storage_roundoff,
+                                travelling_power);
+    } catch (const InvalidInput& e) {
+      report.notes.push_back(std::string("no power table: ") + e.what());
+    }
   }
   // Bad input (a grid that does not match, no height field) is thrown by the analysis.
   auto parts = run_ocean_check_groups(case_file.ocean, frames, check_options,

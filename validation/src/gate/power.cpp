@@ -414,7 +414,7 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
       const double gamma0 = found != c.spectrum.numbers.end() ? found->second : 3.3;
       auto power_at = [&](double g) {
         reference::OceanCase other = c;
-        other.spectrum.numbers["gamma"] = g;
+        other.spectrum.numbers["gamma"] = std::max(1.0, g);  // γ ≥ 1; γ0/(γ0) may round below it
         const auto psi = other.directional_spectrum();
         return shape.power([&](const Wave& w) {
           const double mine = s.psi->psi(w.kx, w.ky) + s.psi->psi(-w.kx, -w.ky);
@@ -532,7 +532,7 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
       const double s0 = found->second;
       auto detects = [&](double value) {
         reference::OceanCase other = c;
-        other.spreading.numbers["s"] = value;
+        other.spreading.numbers["s"] = std::max(value, 1e-6 * s0);
         const auto psi = other.directional_spectrum();
         return direction.power([&](double kx, double ky) { return psi->psi(kx, ky); }) >= kPower;
       };
