@@ -286,15 +286,24 @@ Results check_derived(const Analysis& a, OceanCheckReport& report) {
       const auto dxy = derive([&](double kx, double ky, double k) { return Complex(-l * kx * ky / k); }, m_xy);
       std::vector<double> out(dxx.size());
       products = 0;
+      // The stored height's rounding reaches J through δJ = (1 + b) δa + (1 + a) δb − 2c δc: each
+      // δ is the height's rounding through its multiplier (m_xx, m_yy, m_xy), weighted by the
+      // other factor — 1 while λ∂D ≪ 1, but λ∂D itself where it is large (a λ of 10¹¹ drawn by
+      // the property test made the linear weights 10⁵ times too small).
+      double weight_a = 0, weight_b = 0, weight_c = 0;
       for (std::size_t p = 0; p < dxx.size(); ++p) {
         const double product = (1 + dxx[p]) * (1 + dyy[p]), square = dxy[p] * dxy[p];
         out[p] = product - square - 1;  // J − 1
         // J = (1 + a)(1 + b) − c² rounds relative to its two products, which cancel where
         // the waves are nearly collinear (a narrow spreading: ab ≈ c²) and λ∂D ≫ 1.
         products += product * product + square * square;
+        weight_a += std::pow(1 + std::abs(dyy[p]), 2);
+        weight_b += std::pow(1 + std::abs(dxx[p]), 2);
+        weight_c += square;
       }
-      products /= double(dxx.size());
-      mean_m2 = m_xx + m_yy + 2 * m_xy;
+      const double n = double(dxx.size());
+      products /= n;
+      mean_m2 = m_xx * weight_a / n + m_yy * weight_b / n + m_xy * (2 + 4 * weight_c / n);
       return out;
     };
     for (std::size_t i = 0; i < present.size(); ++i) {
