@@ -45,8 +45,6 @@ namespace swell::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using validation::estimate_json;
-using validation::json_number;
 
 struct FitOptions {
   std::vector<std::string> inputs;
@@ -122,23 +120,7 @@ int run_fit(const FitOptions& o) {
   if (fit.sigma_b) rows.push_back({"sigma_b", "", *fit.sigma_b, truth.sigma_b});
 
   if (!o.json.empty()) {
-    nlohmann::json parameters = nlohmann::json::object(), truths = nlohmann::json::object();
-    for (const auto& row : rows) {
-      parameters[row.name] = estimate_json(row.estimate);
-      if (row.truth) truths[row.name] = json_number(*row.truth);
-    }
-    nlohmann::json document = {
-        {"fit", parameters},
-        {"converged", fit.converged},
-        {"wave_vectors", fit.wave_vectors},
-        {"realizations", fit.realizations},
-        {"interval", validation::interval_method_name(options.interval)},
-        {"peak_wavelengths", json_number(fit.peak_wavelengths)},
-        {"peak_wave_vectors", fit.peak_wave_vectors},
-        {"truth", truths},
-        {"negative_log_likelihood", json_number(fit.negative_log_likelihood)},
-        {"iterations", fit.iterations}};
-    write_json(o.json, document);
+    write_json(o.json, validation::jonswap_fit_json(fit, truth, free_scale, options.interval));
   }
   if (o.json != "-") {
     fmt::print(

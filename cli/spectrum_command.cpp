@@ -70,17 +70,6 @@ std::string flag_of(const std::string& parameter) {
   return flag;
 }
 
-nlohmann::json moments_json(const reference::SeaState& s) {
-  const auto& m = s.moments;
-  return {{"m_1", json_number(m.m_minus1)}, {"m0", json_number(m.m0)},
-          {"m1", json_number(m.m1)},        {"m2", json_number(m.m2)},
-          {"m4", json_number(m.m4)},        {"hs", json_number(s.hs)},
-          {"tp", json_number(s.tp)},        {"tm01", json_number(s.tm01)},
-          {"tm02", json_number(s.tm02)},    {"te", json_number(s.te)},
-          {"epsilon4", json_number(s.epsilon4)}, {"nu", json_number(s.nu)},
-          {"omega_p", json_number(s.omega_p)}};
-}
-
 // " (diverges: S ~ ω⁻⁵ tail)" for the tail exponent p (superscript digits where p is whole).
 std::string tail_note(double p) {
   if (p != std::floor(p) || p < 0 || p > 99) return fmt::format(" (diverges: S ~ ω^−{:g} tail)", p);
@@ -161,14 +150,14 @@ int run_case_spectrum(const SpectrumOptions& o) {
       list.push_back({{"model", c.spectrum.model}, {"params", params}, {"spreading", spreading},
                       {"wind_dir_deg", c.wind_dir_deg}, {"energy_factor", c.energy_factor},
                       {"short_wave_fade", c.short_wave_fade}, {"S", values[i]},
-                      {"moments", moments_json(states[i])}});
+                      {"moments", validation::sea_state_json(states[i])}});
     }
     nlohmann::json document = {{"case", o.case_path},
                                {"description", description},
                                {"omega", omegas},
                                {"components", list},
                                {"S", values.back()},
-                               {"moments", moments_json(sea_state)},
+                               {"moments", validation::sea_state_json(sea_state)},
                                {"units", {{"omega", "rad/s"}, {"S", "m^2 s/rad"},
                                           {"m_n", "m^2 (rad/s)^n"}, {"periods", "s"}}}};
     write_json(o.json, document);
@@ -237,7 +226,7 @@ int run_spectrum(const SpectrumOptions& o) {
                                {"params", params},
                                {"omega", omegas},
                                {"S", values},
-                               {"moments", moments_json(state)},
+                               {"moments", validation::sea_state_json(state)},
                                {"units", {{"omega", "rad/s"}, {"S", "m^2 s/rad"},
                                           {"m_n", "m^2 (rad/s)^n"}, {"periods", "s"}}}};
     write_json(o.json, document);

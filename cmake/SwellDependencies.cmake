@@ -82,3 +82,17 @@ pkg_check_modules(NETCDF QUIET IMPORTED_TARGET netcdf)
 swell_require("netCDF" libnetcdf-dev NETCDF_FOUND)
 find_path(RANDOM123_INCLUDE_DIR Random123/philox.h)
 swell_require("Random123" librandom123-dev RANDOM123_INCLUDE_DIR)
+
+# The Python module (python/, docs/python.md): pybind11 on the Debian Python, whose NumPy,
+# pytest and xarray scripts/common.sh installs (python3-numpy, python3-pytest, python3-xarray).
+# Another Python (a virtual environment's, through pip) is given with -DPython_EXECUTABLE.
+if(SWELL_WITH_PYTHON)
+  if(NOT DEFINED Python_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "The Python the swell module is built for")
+  endif()
+  find_package(Python 3.9 QUIET COMPONENTS Interpreter Development.Module)
+  swell_require("Python 3 headers (Python.h)" python3-dev Python_Development.Module_FOUND)
+  set(PYBIND11_FINDPYTHON ON)
+  find_package(pybind11 CONFIG QUIET)
+  swell_require("pybind11" pybind11-dev pybind11_FOUND)
+endif()

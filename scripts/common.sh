@@ -12,6 +12,9 @@ SWELL_BUILD_DIR="${SWELL_BUILD_DIR:-$SWELL_ROOT/build}"
 # named here) and its OpenMP. openmpi-bin and libopenmpi-dev: swell sweep under mpirun (the
 # default build is the MPI one; its tests run mpirun with 1 and 2 ranks). ccache: rebuilds after
 # a change recompile only what changed, even after a fresh configure (swell_compiler_launcher).
+# The Python module (python/, docs/python.md): pybind11-dev and python3-dev build it, for the
+# Debian python3 whose python3-numpy it needs; python3-pytest runs its suite, python3-xarray and
+# python3-netcdf4 its wavespectra interop.
 SWELL_PACKAGES=(
   build-essential cmake pkg-config
   libfftw3-dev libgtest-dev libgmock-dev libbenchmark-dev libceres-dev libeigen3-dev libopenimageio-dev
@@ -24,6 +27,7 @@ SWELL_PACKAGES=(
   openmpi-bin libopenmpi-dev
   clang libclang-rt-14-dev libomp-14-dev
   ccache
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-xarray python3-netcdf4
 )
 
 swell_install_packages() {
@@ -68,8 +72,27 @@ swell_configure() {
   fi
 }
 
+# Puts <build>/python on the Debian python3's path with a .pth file, so that after either
+# command `python3 -c "import swell"` imports this build's module (docs/python.md): in
+# /usr/local/lib/python3.X/dist-packages as root, in the user's site-packages otherwise. Not a
+# pip install: the module stays the build tree's, rebuilt with it.
+swell_install_python_path() {
+  local python=/usr/bin/python3
+  [ -x "$python" ] || python="$(command -v python3)"
+  local site
+  if [ "$(id -u)" -eq 0 ]; then
+    site="$("$python" -c 'import site; print(site.getsitepackages()[0])')"
+  else
+    site="$("$python" -m site --user-site)"
+  fi
+  mkdir -p "$site"
+  echo "$SWELL_BUILD_DIR/python" > "$site/swell-build.pth"
+  echo "swell: python3 imports swell from $SWELL_BUILD_DIR/python ($site/swell-build.pth)"
+}
+
 swell_build() {
   # Configure once; later calls rebuild only what changed.
   swell_configure "$SWELL_BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
   cmake --build "$SWELL_BUILD_DIR" -j "$(nproc)"
+  swell_install_python_path
 }

@@ -964,4 +964,28 @@ nlohmann::json estimate_json(const Estimate& e) {
   return j;
 }
 
+nlohmann::json jonswap_fit_json(const JonswapFit& fit, const JonswapParameters& truth, bool free_scale,
+                                IntervalMethod interval) {
+  nlohmann::json parameters = nlohmann::json::object(), truths = nlohmann::json::object();
+  auto add = [&](const char* name, const Estimate& estimate, std::optional<double> value) {
+    parameters[name] = estimate_json(estimate);
+    if (value) truths[name] = json_number(*value);
+  };
+  add("hs", fit.hs, free_scale ? std::nullopt : std::optional(truth.hs));
+  add("tp", fit.tp, truth.tp);
+  add("gamma", fit.gamma, truth.gamma);
+  if (fit.sigma_a) add("sigma_a", *fit.sigma_a, truth.sigma_a);
+  if (fit.sigma_b) add("sigma_b", *fit.sigma_b, truth.sigma_b);
+  return {{"fit", parameters},
+          {"converged", fit.converged},
+          {"wave_vectors", fit.wave_vectors},
+          {"realizations", fit.realizations},
+          {"interval", interval_method_name(interval)},
+          {"peak_wavelengths", json_number(fit.peak_wavelengths)},
+          {"peak_wave_vectors", fit.peak_wave_vectors},
+          {"truth", truths},
+          {"negative_log_likelihood", json_number(fit.negative_log_likelihood)},
+          {"iterations", fit.iterations}};
+}
+
 }  // namespace swell::validation

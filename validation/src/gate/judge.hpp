@@ -10,6 +10,7 @@
 #include "swell/reference/ocean_case.hpp"
 #include "swell/validation/gate/options.hpp"
 #include "swell/validation/gate/report.hpp"
+#include "swell/validation/io/probe_series.hpp"
 #include "swell/validation/io/case_file.hpp"
 
 namespace swell::validation::gate_path {
@@ -51,5 +52,8 @@ GateReport read_and_judge_cascades(const CaseFile& case_file, const GateOptions&
 // A probes case (probe_gate.cpp): its series read, then judged by checks/probe_checks.hpp.
 GateReport read_and_judge_probes(const CaseFile& case_file, const GateOptions& options,
                                  Clock::time_point start);
+// Judges a probes case's series already read (or handed over in memory).
+GateReport judge_probes(const CaseFile& case_file, const ProbeSeries& series, const GateOptions& options,
+                        Clock::time_point start);
 
 }  // namespace swell::validation::gate_path

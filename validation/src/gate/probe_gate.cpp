@@ -13,10 +13,15 @@
 namespace swell::validation::gate_path {
 
 GateReport read_and_judge_probes(const CaseFile& case_file, const GateOptions& options, Clock::time_point start) {
+  const auto& layout = case_file.probes->layout;
+  options.report_progress(fmt::format("reading {} samples of {} probes…", layout.samples, layout.positions.size()));
+  return judge_probes(case_file, read_probe_series(case_file), options, start);
+}
+
+GateReport judge_probes(const CaseFile& case_file, const ProbeSeries& series, const GateOptions& options,
+                        Clock::time_point start) {
   const auto probe_case = case_file.probe_case();
   const auto& layout = probe_case.layout;
-  options.report_progress(fmt::format("reading {} samples of {} probes…", layout.samples, layout.positions.size()));
-  const ProbeSeries series = read_probe_series(case_file);
   GateReport report;
   report.case_path = case_file.origin.string();
   report.subject = probe_case.describe();

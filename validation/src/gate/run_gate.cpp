@@ -64,4 +64,13 @@ GateReport run_gate(const CaseFile& case_file, const reference::FrameSequence& f
                Clock::now());
 }
 
+GateReport run_probe_gate(const CaseFile& case_file, const ProbeSeries& series, const GateOptions& options) {
+  options.validate();
+  if (!case_file.is_probe_case()) {
+    throw InvalidInput(case_file.origin.string() + ": not a probes case ([sampling] kind = \"probes\"): "
+                       "it is judged on frames");
+  }
+  return judge_probes(case_file, series, options, Clock::now());
+}
+
 }  // namespace swell::validation

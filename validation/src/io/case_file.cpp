@@ -66,14 +66,16 @@ class Reporter {
  public:
   explicit Reporter(std::string origin) : origin_(std::move(origin)) {}
 
-  // "<origin>:<line>: <what>" (the line when toml++ knows it).
+  // "<origin>:<line>: <what>" (the line when toml++ knows it); a case with no file (an empty
+  // origin: a TOML string or a dict handed to the Python module) says <what> alone.
   [[noreturn]] void fail(const toml::source_region& where, const std::string& what) const {
-    if (where.begin.line > 0) {
+    if (where.begin.line > 0 && !origin_.empty()) {
       throw InvalidInput(fmt::format("{}:{}: {}", origin_, where.begin.line, what));
     }
     fail(what);
   }
   [[noreturn]] void fail(const std::string& what) const {
+    if (origin_.empty()) throw InvalidInput(what);
     throw InvalidInput(fmt::format("{}: {}", origin_, what));
   }
   const std::string& origin() const { return origin_; }

@@ -153,10 +153,9 @@ void require_finite(const std::vector<double>& values, const Grid& grid, const s
 // ------------------------------------------------------------------ reading arrays
 
 // `lattice`: the case samples a lattice of grid.nx points (grid.ny = 1), one (N,) array a field.
-double read_npy_field(const fs::path& path, const Grid& grid, Field field, FieldFrame& frame,
-                      bool lattice = false) {
-  const std::string file = path.string();
-  const NpyArray array = read_npy(path);  // names the file and the problem
+// `file` names the array in messages: the .npy file, or the array handed over in memory.
+double npy_field(const NpyArray& array, const std::string& file, const Grid& grid, Field field,
+                 FieldFrame& frame, bool lattice) {
   const std::vector<std::size_t> want =
       lattice ? std::vector<std::size_t>{static_cast<std::size_t>(grid.nx)}
               : std::vector<std::size_t>{static_cast<std::size_t>(grid.ny),
@@ -208,6 +207,12 @@ double read_npy_field(const fs::path& path, const Grid& grid, Field field, Field
     frame.imaginary[field] = std::move(imaginary);
   }
   return roundoff;
+}
+
+double read_npy_field(const fs::path& path, const Grid& grid, Field field, FieldFrame& frame,
+                      bool lattice = false) {
+  // read_npy names the file and the problem.
+  return npy_field(read_npy(path), path.string(), grid, field, frame, lattice);
 }
 
 double read_raw_field(const fs::path& path, const Grid& grid, Field field,
@@ -345,6 +350,39 @@ double quantization_roundoff(const IntegerRange& range, double levels,
   return rms > 0 ? std::min(1.0, step / std::sqrt(12.0) / rms) : 1.0;
 }
 
+
+reference::FrameSequence frames_from_arrays(const reference::OceanCase& ocean,
+                                            const std::string& declared_precision,
+                                            const std::map<Field, std::vector<NpyArray>>& arrays) {
+  if (arrays.empty()) {
+    throw InvalidInput("no field given: give at least one of height, slope_x, slope_y, disp_x, "
+                       "disp_y, jacobian");
+  }
+  const bool lattice = ocean.is_lattice();
+  const Grid grid = lattice ? Grid{static_cast<int>(ocean.lattice->points()), 1, ocean.grid.lx,
+                                   ocean.grid.ly}
+                            : ocean.grid;
+  FrameSequence sequence;
+  sequence.grid = ocean.grid;
+  sequence.lattice = ocean.lattice;
+  sequence.frames.resize(static_cast<std::size_t>(ocean.frames));
+  double roundoff = 0;
+  for (const auto& [field, frames] : arrays) {
+    const std::string name = reference::field_name(field);
+    if (frames.size() != sequence.frames.size()) {
+      throw InvalidInput(fmt::format("{}: {} frame{} where the case has [time] frames = {}", name,
+                                     frames.size(), frames.size() == 1 ? "" : "s", ocean.frames));
+    }
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+      sequence.frames[f].time = ocean.time(int(f));
+      const std::string source =
+          frames.size() == 1 ? name : fmt::format("{}, frame {}", name, f);
+      roundoff = std::max(roundoff, npy_field(frames[f], source, grid, field, sequence.frames[f], lattice));
+    }
+  }
+  set_storage_precision(sequence, roundoff, declared_precision, "the arrays");
+  return sequence;
+}
 
 FrameFormat frame_format_from_string(const std::string& name) {
   if (name == "exr") return FrameFormat::exr;

@@ -247,8 +247,8 @@ ProbeSeries read_openfast(const fs::path& path, const ProbeInput& input, const r
   return series;
 }
 
-ProbeSeries read_npy_series(const fs::path& path, const reference::ProbeLayout& layout) {
-  const NpyArray array = read_npy(path);
+// `path` names the array in messages: the .npy file, or the array handed over in memory.
+ProbeSeries npy_series(const NpyArray& array, const fs::path& path, const reference::ProbeLayout& layout) {
   const std::size_t probes = layout.positions.size();
   const bool one_column = array.shape.size() == 1 && probes == 1;
   if (!(one_column || (array.shape.size() == 2 && array.shape[1] == probes))) {
@@ -299,7 +299,18 @@ ProbeSeries read_npy_series(const fs::path& path, const reference::ProbeLayout& 
   return series;
 }
 
+ProbeSeries read_npy_series(const fs::path& path, const reference::ProbeLayout& layout) {
+  return npy_series(read_npy(path), path, layout);
+}
+
 }  // namespace
+
+ProbeSeries probe_series_from_array(const NpyArray& array, const std::string& source,
+                                    const reference::ProbeLayout& layout) {
+  ProbeSeries series = npy_series(array, source, layout);
+  series.source = source;
+  return series;
+}
 
 ProbeSeries read_probe_series(const fs::path& path, const ProbeInput& input, const reference::ProbeLayout& layout) {
   std::error_code error;

@@ -1,5 +1,7 @@
 #include "swell/validation/results/report.hpp"
 
+#include "swell/reference/moments.hpp"
+
 #include "swell/reference/errors.hpp"
 #include "swell/validation/results/text.hpp"
 
@@ -33,6 +35,17 @@ const std::vector<std::string> kHeader = {"check", "subject", "measured", "expec
 
 nlohmann::json json_number(double x) {
   return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
+}
+
+nlohmann::json sea_state_json(const reference::SeaState& s) {
+  const auto& m = s.moments;
+  return {{"m_1", json_number(m.m_minus1)}, {"m0", json_number(m.m0)},
+          {"m1", json_number(m.m1)},        {"m2", json_number(m.m2)},
+          {"m4", json_number(m.m4)},        {"hs", json_number(s.hs)},
+          {"tp", json_number(s.tp)},        {"tm01", json_number(s.tm01)},
+          {"tm02", json_number(s.tm02)},    {"te", json_number(s.te)},
+          {"epsilon4", json_number(s.epsilon4)}, {"nu", json_number(s.nu)},
+          {"omega_p", json_number(s.omega_p)}};
 }
 
 std::string render_table(const std::vector<CheckResult>& results) {

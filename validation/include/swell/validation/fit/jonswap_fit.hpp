@@ -104,4 +104,11 @@ std::vector<double> jonswap_model_periodogram(const reference::OceanCase& ocean_
 // what the method gave is under "ci95_uncalibrated", with the reason.
 nlohmann::json estimate_json(const Estimate& estimate);
 
+// The fit as `swell fit --json` writes it (and swell.fit returns it): {"fit": {name: estimate_json},
+// "converged", "wave_vectors", "realizations", "interval", "peak_wavelengths", "peak_wave_vectors",
+// "truth": {name: the case's value}, "negative_log_likelihood", "iterations"}. The truth is left
+// out where it does not mean the same as the estimate: Hs of a free-scale case (`free_scale`).
+nlohmann::json jonswap_fit_json(const JonswapFit& fit, const JonswapParameters& truth, bool free_scale,
+                                IntervalMethod interval);
+
 }  // namespace swell::validation

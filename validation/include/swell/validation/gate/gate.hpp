@@ -19,6 +19,7 @@
 #include "swell/validation/gate/render.hpp"
 #include "swell/validation/gate/report.hpp"
 #include "swell/validation/io/case_file.hpp"
+#include "swell/validation/io/probe_series.hpp"
 #include "swell/validation/results/check_result.hpp"
 
 namespace swell::validation {
@@ -33,6 +34,9 @@ GateReport run_gate(const CaseFile& case_file, const GateOptions& options);
 // Judges frames already in memory.
 GateReport run_gate(const CaseFile& case_file, const reference::FrameSequence& frames,
                     const GateOptions& options = {});
+// Judges a probes case's series already in memory (io/probe_series.hpp).
+GateReport run_probe_gate(const CaseFile& case_file, const ProbeSeries& series,
+                          const GateOptions& options = {});
 // Judges a cascade set (docs/gate.md §10) whose frames are in memory: `cascades[c]` holds
 // cascade c's (no frames: not given), `sum` the summed surface's (null: not given). Every
 // cascade passes the ordinary checks against its band of the spectrum (results named

@@ -21,11 +21,13 @@
 // throw InvalidInput naming the file and the problem.
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "swell/reference/fields.hpp"
 #include "swell/validation/io/case_file.hpp"
+#include "swell/validation/io/npy.hpp"
 
 namespace swell::validation {
 
@@ -88,5 +90,15 @@ using FieldFilter = std::function<bool(int frame, reference::Field field)>;
 reference::FrameSequence read_frames(const CaseFile& case_file,
                                      const std::string& pattern_override = "",
                                      const FieldFilter& keep = {}, int threads = 0);
+
+// Frames handed over in memory (the Python module): arrays[field][frame], each as the .npy file
+// of that field and frame would hold it (float16, float32, float64, complex64 or complex128;
+// (ny, nx), or (N,) on a lattice). Read, checked and given their precision exactly as
+// read_frames reads .npy files, with `declared_precision` as [input] precision; messages name
+// the field and frame ("height, frame 3: wrong shape …"). Every field needs the case's frame
+// count.
+reference::FrameSequence frames_from_arrays(const reference::OceanCase& ocean,
+                                            const std::string& declared_precision,
+                                            const std::map<reference::Field, std::vector<NpyArray>>& arrays);
 
 }  // namespace swell::validation

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "swell/validation/io/case_file.hpp"
+#include "swell/validation/io/npy.hpp"
 
 namespace swell::validation {
 
@@ -32,6 +33,12 @@ ProbeSeries read_probe_series(const CaseFile& case_file);
 // The same from `input`'s file at `path` against `layout`.
 ProbeSeries read_probe_series(const std::filesystem::path& path, const ProbeInput& input,
                               const reference::ProbeLayout& layout);
+
+// The series of an array handed over in memory (the Python module), as a .npy file of it is
+// read: (samples, probes), or (samples,) for one probe, float32 or float64; `source` names it
+// in messages.
+ProbeSeries probe_series_from_array(const NpyArray& array, const std::string& source,
+                                    const reference::ProbeLayout& layout);
 
 // Writes `series` (elevation[p][n]) as CSV: a header "time,<names…>", then one row per sample
 // with the time and each probe's value, in shortest round-trip form (exact for float64).

@@ -7,6 +7,10 @@
 
 #include "swell/validation/results/check_result.hpp"
 
+namespace swell::reference {
+struct SeaState;
+}
+
 namespace swell::validation {
 
 std::string render_table(const std::vector<CheckResult>& results);
@@ -22,5 +26,9 @@ void write_report(const std::filesystem::path& dir, const std::string& stem,
 
 // A JSON number, or null when x is NaN or ±∞ (JSON has no such numbers).
 nlohmann::json json_number(double x);
+// A sea state's moments and periods as `swell spectrum --json` writes them: {"m_1", "m0", "m1",
+// "m2", "m4", "hs", "tp", "tm01", "tm02", "te", "epsilon4", "nu", "omega_p"}; a moment that
+// diverges is null.
+nlohmann::json sea_state_json(const reference::SeaState& state);
 
 }  // namespace swell::validation
