@@ -1,5 +1,6 @@
 // swell.gate: frames (or probe series) handed over as arrays, read by frames_from_arrays as the
-// command reads .npy files of them, then judged by the same run_gate; the report is rendered by
+// command reads .npy files of them — or, with no arrays, the files the case names — then judged
+// by the same run_gate; the report is rendered by
 // the same functions as the command's text, JSON and JUnit XML.
 #include <fmt/format.h>
 #include <pybind11/stl.h>
@@ -36,7 +37,11 @@ Report gate(const Case& c, const py::dict& fields, const py::list& cascades, con
   const auto& file = *c.file;
   const auto options = options_of(alpha, threads, power);
   validation::GateReport report;
-  if (file.is_probe_case()) {
+  if (fields.empty() && cascades.empty() && sum.is_none() && elevation.is_none()) {
+    // No arrays: the frames (or series) the case's [input] names, read as the command reads them.
+    py::gil_scoped_release release;
+    report = validation::run_gate(file, options);
+  } else if (file.is_probe_case()) {
     if (elevation.is_none()) {
       throw InvalidInput("a probes case is judged on its series: give elevation = an array of (samples, probes)");
     }

@@ -277,8 +277,10 @@ def gate(case, *, alpha=1e-3, threads=0, power=True, cascades=None, sum=None, el
     for engines that hand over imaginary parts), in any memory layout. The dtype is the stored
     precision, as a file's type is (docs/conventions.md §Storage precision). A cascade set takes
     ``cascades=[{"height": …}, …]`` and optionally ``sum={…}``; a probes case
-    ``elevation=(samples, probes)``. ``alpha`` is the family-wise false-alarm rate; ``power``
-    adds the gate's power table to a single surface's report.
+    ``elevation=(samples, probes)``. With no arrays, the files the case's [input] names are
+    read, as the command reads them (EXR, TIFF, PNG, .npy, raw; CSV or .out series). ``alpha``
+    is the family-wise false-alarm rate; ``power`` adds the gate's power table to a single
+    surface's report.
     """
     case = _case_of(case)
     native_fields = _field_dict(case, fields)
