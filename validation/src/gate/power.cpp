@@ -49,7 +49,6 @@ struct Wave {
 };
 
 struct Setup {
-  const reference::OceanCase* ocean = nullptr;
   reference::DirectionalSpectrumPtr psi;
   std::vector<Wave> waves;  // resolved, sorted by |k|
   std::vector<double> times;
@@ -62,7 +61,6 @@ struct Setup {
 Setup make_setup(const CaseFile& case_file, double alpha, double unit_roundoff,
                  double storage_roundoff, const std::vector<double>& tau) {
   Setup s;
-  s.ocean = &case_file.ocean;
   const auto& c = case_file.ocean;
   const reference::Sampling sampling = c.sampling();
   s.mu = expected_periodogram(tau, sampling);
@@ -227,7 +225,7 @@ bool cholesky(const std::array<std::array<double, 4>, 4>& a, std::array<std::arr
 // Σ r² (g − ḡ)(g − ḡ)ᵀ; T = Dᵀ C⁻¹ D with the null's C against χ²(4) at α/2.
 class DirectionPower {
  public:
-  DirectionPower(const Setup& s, double alpha) : s_(s) {
+  DirectionPower(const Setup& s, double alpha) {
     for (const Wave& w : s.waves) {
       if (w.tau_plus >= s.floor) entries_.push_back({w.kx, w.ky, w.theta});
       if (w.tau_minus >= s.floor) entries_.push_back({-w.kx, -w.ky, w.theta + std::numbers::pi});
@@ -310,7 +308,6 @@ class DirectionPower {
   static std::array<double, 4> harmonics(double theta) {
     return {std::cos(theta), std::sin(theta), std::cos(2 * theta), std::sin(2 * theta)};
   }
-  const Setup& s_;
   std::vector<Entry> entries_;
   std::size_t stride_ = 1;
   std::vector<std::array<double, 4>> centred_;
@@ -346,6 +343,29 @@ double dispersion_fraction(const Setup& s, const std::vector<const Wave*>& waves
     energy += frames * (w.tau_plus + w.tau_minus);
   }
   return energy > 0 ? left / energy : 0;
+}
+
+// The frames' energy over what dispersion.residual's fits see: Σ (τ+ + τ−) over every wave
+// over that of the waves whose two waves the frame times tell apart (fit_two_waves accepts
+// them) — 2 when those carry the sea (the half plane's half), far more when a loop period
+// leaves only weak waves identifiable. The check's bound scales its rounding by it.
+double fits_energy_share(const Setup& s) {
+  std::vector<Complex> phases, y(s.times.size());
+  double all = 0, fitted = 0, phases_omega = -1;
+  bool identifiable = false;
+  for (const Wave& w : s.waves) {
+    const double power = w.tau_plus + w.tau_minus;
+    all += power;
+    if (w.omega != phases_omega) {
+      phases_omega = w.omega;
+      two_wave_phases(w.omega, s.times, phases);
+      Complex a, b;
+      double residual = 0;
+      identifiable = fit_two_waves(phases, y, a, b, residual);
+    }
+    if (identifiable) fitted += power;
+  }
+  return 2 * all / std::max(2 * fitted, all * 1e-300);
 }
 
 }  // namespace
@@ -440,9 +460,11 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
   double epsilon = std::numeric_limits<double>::quiet_NaN();
   std::string omega_check;
   if (s.times.size() >= 3) {
-    const double fits_energy_share = 2.0;  // Σ mean h² over the fits' energy: the half plane's half
-    const double bound = std::pow(rounding_budget(kCompoundRounding, s.u, s.log2n), 2) +
-                         4 * s.storage * s.storage * fits_energy_share;
+    // As dispersion.residual judges: the rounding against the frames' energy where the fitted
+    // waves carry less than the half plane's half of it.
+    const double share = fits_energy_share(s);
+    const double bound = std::pow(rounding_budget(kCompoundRounding, s.u, s.log2n), 2) * std::max(1.0, share / 2) +
+                         4 * s.storage * s.storage * share;
     std::vector<const Wave*> strongest;
     for (const Wave& w : s.waves) strongest.push_back(&w);
     std::sort(strongest.begin(), strongest.end(), [](const Wave* x, const Wave* y) {

@@ -20,6 +20,7 @@
 #include "swell/validation/checks/ocean_check_table.hpp"
 #include "swell/validation/checks/ocean_checks.hpp"
 #include "swell/validation/checks/ocean_matrix.hpp"
+#include "swell/validation/io/case_file.hpp"
 #include "swell/validation/stats/statistics.hpp"
 #include "test_engine.hpp"
 
@@ -485,6 +486,46 @@ TEST(OceanChecks, WavesAtRestHaveNoPeriodToJudge) {
   }
   EXPECT_EQ(at_rest, (std::set<std::string>{"moments.tm01", "moments.tm02", "moments.tp"}));
   EXPECT_NO_THROW(find(report, "moments.hs"));
+}
+
+// A loop period of 74 s on a 33 m/s Pierson–Moskowitz sea over 8.5 × 15 km quantizes the
+// energetic waves' ω to 1–3 steps of 0.085 rad/s, which three frames 0.37 s apart cannot tell
+// apart from their mirror waves: the fits see only weak waves, 9e-12 of the frames' energy
+// (soak seed 153763039676024). The frames' rounding, spread over every wave vector, is then
+// judged against the frames' energy, not the fitted sliver's: right fp64 frames pass; frames
+// whose ω is not quantized still fail.
+TEST(OceanChecks, DispersionRoundingIsJudgedAgainstTheFramesEnergyWhenFewWavesAreIdentifiable) {
+  const auto case_file = swell::validation::parse_case_toml(R"(
+[grid]
+n = [128, 128]
+length = [8526.28, 15153.8]
+[time]
+t0 = 21.337
+dt = 0.36934
+frames = 3
+[spectrum]
+model = "pierson-moskowitz"
+u19_5 = 33.0422
+[spreading]
+model = "cos-power"
+p = 69.1252
+one_sided = "yes"
+wind_dir_deg = 96.2011
+[synthesis]
+choppiness = -0.448179
+loop_period = 74.0592
+seed = 419493
+)", "loop_period_case.toml");
+  const OceanCase& c = case_file.ocean;
+  const auto frames = swell::impls::Synthesizer(c, {"fftw", swell::impls::Precision::f64}).frames();
+  const CheckResult& right = find(run_ocean_checks(c, frames), "dispersion.residual");
+  EXPECT_TRUE(right.passed) << right.reason << " (bound " << right.tolerance << ")";
+  OceanCase unquantized = c;
+  unquantized.loop_period = 0;
+  const auto wrong = swell::impls::Synthesizer(unquantized, {"fftw", swell::impls::Precision::f64}).frames();
+  const CheckResult& judged = find(run_ocean_checks(c, wrong), "dispersion.residual");
+  EXPECT_FALSE(judged.passed) << judged.reason;
+  EXPECT_GT(judged.measured, 1e3 * judged.tolerance) << "the scaled bound should leave the check its power";
 }
 
 // ------------------------------------------------------------------ interface

@@ -298,14 +298,20 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
     energy += f.energy;
   }
   const double fraction = residual / std::max(energy, 1e-300);
-  // Rounding alone leaves at most (u log2 N)² of the energy; allow 64× that. Half storage adds
-  // an error of at most s² of each frame's energy (s = 2⁻¹⁰), which the fit cannot absorb: at
-  // most Σ mean h² s² of what the fits see, allowed 4× (its energy is bounded, not estimated;
-  // the fits see about half of each frame's energy, the half plane).
+  // Rounding alone leaves at most (u log2 N)² of the frames' energy, spread over every wave
+  // vector; allow 64× that. The fits see about half of each frame's energy (the half plane)
+  // when the waves that carry the sea are identifiable; where they are not (a loop period
+  // quantizes the energetic waves' ω so low that the frames' span cannot tell their two waves
+  // apart, and only weak waves are fitted), the fitted waves carry a sliver of the energy and
+  // the rounding is judged against the frames' energy, frames_energy / (2 × fitted energy)
+  // times the bound. Half storage adds an error of at most s² of each frame's energy
+  // (s = 2⁻¹⁰), which the fit cannot absorb: at most Σ mean h² s² of what the fits see,
+  // allowed 4× (its energy is bounded, not estimated).
   double frames_energy = 0;
   for (const FrameStray& s : a.frame_strays()) frames_energy += s.mean_square;
   const double s = a.storage_roundoff();
-  const double bound = std::pow(rounding_budget(kCompoundRounding, a.unit_roundoff(), a.log2n()), 2) +
+  const double unseen = std::max(1.0, frames_energy / (2 * std::max(energy, 1e-300)));
+  const double bound = std::pow(rounding_budget(kCompoundRounding, a.unit_roundoff(), a.log2n()), 2) * unseen +
                        4 * s * s * frames_energy / std::max(energy, 1e-300);
   Results out;
 
