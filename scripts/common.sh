@@ -75,19 +75,33 @@ swell_configure() {
 # Puts <build>/python on the Debian python3's path with a .pth file, so that after either
 # command `python3 -c "import swell"` imports this build's module (docs/python.md): in
 # /usr/local/lib/python3.X/dist-packages as root, in the user's site-packages otherwise. Not a
-# pip install: the module stays the build tree's, rebuilt with it.
+# pip install: the module stays the build tree's, rebuilt with it. Where `python3` on PATH is
+# another interpreter of the same version (pyenv's, say), it gets the same .pth, with Debian's
+# packages (NumPy) after its own.
 swell_install_python_path() {
-  local python=/usr/bin/python3
-  [ -x "$python" ] || python="$(command -v python3)"
-  local site
-  if [ "$(id -u)" -eq 0 ]; then
-    site="$("$python" -c 'import site; print(site.getsitepackages()[0])')"
-  else
-    site="$("$python" -m site --user-site)"
-  fi
-  mkdir -p "$site"
-  echo "$SWELL_BUILD_DIR/python" > "$site/swell-build.pth"
-  echo "swell: python3 imports swell from $SWELL_BUILD_DIR/python ($site/swell-build.pth)"
+  local debian=/usr/bin/python3
+  [ -x "$debian" ] || return 0
+  local version
+  version="$("$debian" -c 'import sys; print(sys.version_info[:2])')"
+  local python site lines
+  for python in "$debian" "$(command -v python3 || true)"; do
+    [ -n "$python" ] || continue
+    [ "$python" = "$debian" ] || [ "$(readlink -f "$python")" != "$(readlink -f "$debian")" ] || continue
+    if [ "$("$python" -c 'import sys; print(sys.version_info[:2])')" != "$version" ]; then
+      echo "swell: $python is not the Python $version the module is built for; use $debian"
+      continue
+    fi
+    if [ "$(id -u)" -eq 0 ]; then
+      site="$("$python" -c 'import site; print(site.getsitepackages()[0])')"
+    else
+      site="$("$python" -m site --user-site)"
+    fi
+    lines="$SWELL_BUILD_DIR/python"
+    [ "$python" = "$debian" ] || lines+=$'\n/usr/lib/python3/dist-packages'
+    mkdir -p "$site"
+    printf '%s\n' "$lines" > "$site/swell-build.pth"
+    echo "swell: $python imports swell from $SWELL_BUILD_DIR/python ($site/swell-build.pth)"
+  done
 }
 
 swell_build() {

@@ -23,6 +23,7 @@
 #include "swell/validation/gate/render.hpp"
 #include "swell/validation/checks/ocean_checks.hpp"
 #include "gate/gate_cases.hpp"
+#include "frame_edits.hpp"
 #include "half_rounding.hpp"
 #include "swell/validation/stats/periodogram.hpp"
 #include "test_engine.hpp"
@@ -213,30 +214,12 @@ swell::validation::CheckResult result_of(const GateReport& report, const std::st
   return {};
 }
 
-// The rms of a field over a frame sequence's frame 0.
-double rms_of(const swell::reference::FrameSequence& frames, swell::reference::Field field) {
-  const auto& v = frames.field(0, field);
-  double sum = 0;
-  for (double x : v) sum += x * x;
-  return std::sqrt(sum / double(v.size()));
-}
-
-// Fills a grid field's Nyquist row and column: c (−1)^i along x plus c (−1)^j along y, as an
-// engine that writes those bins (or packs two fields per complex transform) leaves them.
-void fill_nyquist(std::vector<double>& field, const Grid& grid, double c) {
-  for (int j = 0; j < grid.ny; ++j) {
-    for (int i = 0; i < grid.nx; ++i) {
-      field[std::size_t(j) * grid.nx + i] += c * ((i % 2 ? -1.0 : 1.0) + (j % 2 ? -1.0 : 1.0));
-    }
-  }
-}
-
 // A mean level that oscillates and is zero at frame 0 (sin, not cos): read from frame 0 alone
 // it passes; every frame is judged, and heave is named.
 TEST(EveryFrame, AMeanLevelZeroAtTheFirstFrameIsHeave) {
   const OceanCase c = catalogue_case();
   auto frames = swell::test::render_surface(c);
-  const double amplitude = 0.5 * rms_of(frames, swell::reference::Field::height);
+  const double amplitude = 0.5 * swell::test::rms_of(frames, swell::reference::Field::height);
   for (auto& frame : frames.frames) {
     const double level = amplitude * std::sin(2 * std::numbers::pi * frame.time / (c.frames * c.dt));
     for (double& h : frame.fields[swell::reference::Field::height]) h += level;
@@ -276,7 +259,7 @@ TEST(SeveralFaults, TransposeAndSwapHoldWithNyquistStrayEnergy) {
     for (auto& frame : frames.frames) {
       for (auto& [field, values] : frame.fields) {
         if (field == swell::reference::Field::jacobian) continue;
-        fill_nyquist(values, c.grid, 0.05 * rms_of(frames, field));
+        swell::test::add_nyquist(values, c.grid, 0.05 * swell::test::rms_of(frames, field));
       }
     }
     const auto report = swell::validation::run_gate(as_case_file(c), frames, GateOptions{});
@@ -296,8 +279,8 @@ TEST(SeveralFaults, TransposeAndSwapHoldWithNyquistStrayEnergy) {
 TEST(SeveralFaults, ANyquistLeakAloneIsNamedAsSuch) {
   const OceanCase c = catalogue_case();
   auto frames = swell::test::render_surface(c);
-  const double rms = rms_of(frames, swell::reference::Field::disp_y);
-  for (auto& frame : frames.frames) fill_nyquist(frame.fields[swell::reference::Field::disp_y], c.grid, 5e-3 * rms);
+  const double rms = swell::test::rms_of(frames, swell::reference::Field::disp_y);
+  for (auto& frame : frames.frames) swell::test::add_nyquist(frame.fields[swell::reference::Field::disp_y], c.grid, 5e-3 * rms);
   const auto report = swell::validation::run_gate(as_case_file(c), frames, GateOptions{});
   const auto r = result_of(report, "derived.disp_y");
   EXPECT_FALSE(r.passed) << r.reason;
@@ -330,17 +313,6 @@ TEST(Degenerate, ChoppinessZeroMeansNoDisplacement) {
 
 // ------------------------------------------------------------------ one cause, once
 
-// Every linear field × √factor (the energy × factor); the Jacobian, which is not linear in them,
-// dropped.
-void scale_energy(swell::reference::FrameSequence& frames, double factor) {
-  for (auto& frame : frames.frames) {
-    frame.fields.erase(swell::reference::Field::jacobian);
-    for (auto& [field, values] : frame.fields) {
-      for (double& v : values) v *= std::sqrt(factor);
-    }
-  }
-}
-
 // The Godot ocean's energy × 8 (2 × 2 × 2) on a sea whose peak sits at 1.2 Δk, where a handful
 // of waves carry the energy and the total's ratio is noisy: the shape check names the whole
 // factor and its decomposition from the rings' median; energy, where it fails, names the same;
@@ -351,7 +323,7 @@ TEST(OneCause, EnergyTimesEightIsNamedWholeWhereAHandfulOfWavesCarryTheSea) {
   for (unsigned seed : {7u, 8u, 9u}) {
     c.seed = seed;
     auto frames = swell::test::render_surface(c);
-    scale_energy(frames, 8.0);
+    swell::test::scale_energy(frames, 8.0);
     const auto report = swell::validation::run_gate(as_case_file(c), frames, GateOptions{});
     const auto shape = result_of(report, "spectrum.shape");
     EXPECT_FALSE(shape.passed) << shape.reason;
@@ -372,7 +344,7 @@ TEST(OneCause, EnergyTimesEightIsNamedWholeWhereAHandfulOfWavesCarryTheSea) {
 TEST(OneCause, EnergyTimesEightOnAWideSeaIsNamedByEnergy) {
   const OceanCase c = catalogue_case();
   auto frames = swell::test::render_surface(c);
-  scale_energy(frames, 8.0);
+  swell::test::scale_energy(frames, 8.0);
   const auto report = swell::validation::run_gate(as_case_file(c), frames, GateOptions{});
   const auto energy = result_of(report, "energy");
   EXPECT_FALSE(energy.passed);
@@ -443,7 +415,7 @@ TEST(PowerCalibration, PredictedSizesAreDetectedAtTheirPower) {
       declared.seed = 9100 + s;
       const OceanCase engine = engine_of(declared.seed);
       auto frames = swell::test::render_surface(engine);
-      if (factor != 1.0) scale_energy(frames, factor);
+      if (factor != 1.0) swell::test::scale_energy(frames, factor);
       // Stamped with the declared times, as frames read from files are (an engine with another
       // time step renders its own).
       for (int f = 0; f < int(frames.frames.size()); ++f) frames.frames[std::size_t(f)].time = declared.time(f);
@@ -587,8 +559,8 @@ TEST(HalfPrecision, ErrorsTenTimesTheFloorFail) {
   EXPECT_NE(dispersion.reason.find("ω is 1.06"), std::string::npos) << dispersion.reason;
 
   auto leaking = swell::test::render_surface(c);
-  const double rms = rms_of(leaking, swell::reference::Field::disp_y);
-  for (auto& frame : leaking.frames) fill_nyquist(frame.fields[swell::reference::Field::disp_y], c.grid, 5.5e-3 / std::numbers::sqrt2 * rms);
+  const double rms = swell::test::rms_of(leaking, swell::reference::Field::disp_y);
+  for (auto& frame : leaking.frames) swell::test::add_nyquist(frame.fields[swell::reference::Field::disp_y], c.grid, 5.5e-3 / std::numbers::sqrt2 * rms);
   const auto leak = result_of(judge(leaking), "derived.disp_y");
   EXPECT_FALSE(leak.passed) << leak.reason;
   EXPECT_NE(leak.reason.find("on the Nyquist row and column"), std::string::npos) << leak.reason;

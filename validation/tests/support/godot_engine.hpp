@@ -17,6 +17,7 @@
 #include <map>
 #include <numbers>
 
+#include "frame_edits.hpp"
 #include "half_rounding.hpp"
 #include "swell/validation/stats/periodogram.hpp"
 #include "test_engine.hpp"
@@ -29,21 +30,6 @@ struct GodotConventions {
 };
 
 namespace godot_detail {
-
-inline double rms(const std::vector<double>& v) {
-  double sum = 0;
-  for (double x : v) sum += x * x;
-  return std::sqrt(sum / double(v.size()));
-}
-
-// c (−1)^i + c (−1)^j: energy on the Nyquist column and row.
-inline void add_nyquist(std::vector<double>& field, const reference::Grid& grid, double c) {
-  for (int j = 0; j < grid.ny; ++j) {
-    for (int i = 0; i < grid.nx; ++i) {
-      field[std::size_t(j) * grid.nx + i] += c * ((i % 2 ? -1.0 : 1.0) + (j % 2 ? -1.0 : 1.0));
-    }
-  }
-}
 
 // ∂f/∂x (along_x) or ∂f/∂y of a grid field, spectrally.
 inline std::vector<double> derivative(const std::vector<double>& f, const reference::Grid& grid, bool along_x) {
@@ -65,11 +51,7 @@ inline reference::FrameSequence render_godot(const reference::OceanCase& c, cons
   auto frames = render_surface(c, godot.against_wind ? EngineBug::reversed_time : EngineBug::none);
   for (auto& frame : frames.frames) {
     frame.fields.erase(Field::jacobian);
-    if (godot.energy_times_8) {
-      for (auto& [field, values] : frame.fields) {
-        for (double& v : values) v *= std::sqrt(8.0);
-      }
-    }
+    if (godot.energy_times_8) scale_energy(frame, 8.0);
     // The normal map from the displacement the engine outputs (× 8 included).
     if (godot.normal_map) {
       for (Field slope : {Field::slope_x, Field::slope_y}) {
@@ -83,10 +65,10 @@ inline reference::FrameSequence render_godot(const reference::OceanCase& c, cons
   }
   // Levels from frame 0's fields, as the engine's bins are filled at a fixed level.
   std::map<Field, double> levels;
-  for (const auto& [field, values] : frames.frames.front().fields) levels[field] = godot_detail::rms(values);
+  for (const auto& [field, values] : frames.frames.front().fields) levels[field] = rms(values);
   for (auto& frame : frames.frames) {
     if (godot.nyquist_filled) {
-      for (auto& [field, values] : frame.fields) godot_detail::add_nyquist(values, c.grid, 3e-3 * levels[field]);
+      for (auto& [field, values] : frame.fields) add_nyquist(values, c.grid, 3e-3 * levels[field]);
     }
     if (godot.packed_leak) {  // the Nyquist column alone: c (−1)^i
       auto& z = frame.fields.at(Field::disp_y);
