@@ -25,11 +25,22 @@
 // longer loads it (before 83ae62c it did, and runs on a machine with cached wisdom were faster
 // than a fresh machine's: docs/performance.md §6).
 //
+//   gate_floor/<N>/<F>/real_time
+//                             the floor a gate cannot beat: the same frames read one at a time
+//                             and every field of each transformed once (the analysis
+//                             transform, fp64 FFTW), nothing kept
+//
+// Both carry peak_MB, the run's peak resident memory, and rise_MB, its rise over what the
+// process held before (peak_memory.hpp); frames_MB, the frames' fields as stored (float32). From
+// 2048² on, the frames hold h, dx and dy only (a film pipeline's displacement maps).
+//
 //   build/bench/swell_gate_bench --benchmark_filter=gate/512/64 --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <complex>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -38,6 +49,8 @@
 #include <string>
 
 #include "bench_support.hpp"
+#include "peak_memory.hpp"
+#include "swell/validation/stats/periodogram.hpp"
 #include "swell/impls/synthesizer.hpp"
 #include "swell/reference/ocean_case.hpp"
 #include "swell/validation/io/case_file.hpp"
@@ -66,6 +79,20 @@ int gate_threads() {
 
 OceanCase bench_case(int n, int frames) { return swell::bench::jonswap_bench_case(n, frames, 0.1); }
 
+// All six fields up to 1024²; h, dx and dy from 2048² on.
+std::vector<swell::reference::Field> bench_fields(int n) {
+  using swell::reference::Field;
+  if (n >= 2048) return {Field::height, Field::disp_x, Field::disp_y};
+  return {swell::reference::kAllFields.begin(), swell::reference::kAllFields.end()};
+}
+
+void set_memory_counters(benchmark::State& state, const swell::bench::PeakMemory& memory, int n, int frames) {
+  constexpr double kMB = 1e6;
+  state.counters["peak_MB"] = memory.peak_bytes() / kMB;
+  state.counters["rise_MB"] = memory.rise_bytes() / kMB;
+  state.counters["frames_MB"] = double(n) * n * 4.0 * double(bench_fields(n).size()) * frames / kMB;
+}
+
 // One directory of frames per (N, F), made on first use and removed at exit.
 class FrameDirectories {
  public:
@@ -75,6 +102,7 @@ class FrameDirectories {
   }
   fs::path case_file(int n, int frames) {
     const std::string key = std::to_string(n) + "/" + std::to_string(frames);
+    const auto fields = bench_fields(n);
     if (auto it = made_.find(key); it != made_.end()) return it->second / "case.toml";
     const fs::path directory = fs::temp_directory_path() /
                                ("swell_gate_bench_" + std::to_string(getpid()) + "_" +
@@ -88,11 +116,12 @@ class FrameDirectories {
     swell::validation::FrameWriteOptions write;
     write.format = swell::validation::FrameFormat::exr;
     for (int f = 0; f < frames; ++f) {
-      swell::validation::write_frame(directory, case_file.ocean.grid,
-                                     synthesizer.frame(case_file.ocean.time(f)), f, write);
+      auto frame = synthesizer.frame(case_file.ocean.time(f));
+      std::erase_if(frame.fields, [&](const auto& entry) {
+        return std::find(fields.begin(), fields.end(), entry.first) == fields.end();
+      });
+      swell::validation::write_frame(directory, case_file.ocean.grid, frame, f, write);
     }
-    std::vector<swell::reference::Field> fields(swell::reference::kAllFields.begin(),
-                                                swell::reference::kAllFields.end());
     case_file.input = swell::validation::frame_input_spec(fields, write);
     swell::validation::write_case_file(directory / "case.toml", case_file);
     return directory / "case.toml";
@@ -169,6 +198,7 @@ void run_gate_bench(benchmark::State& state, int n, int frames, bool cascades) {
   options.threads = gate_threads();
   double read = 0, total = 0, cpu = 0;
   bool passed = true;
+  const swell::bench::PeakMemory memory;
   for (auto _ : state) {
     try {
       const double cpu_start = process_cpu_seconds();
@@ -188,8 +218,41 @@ void run_gate_bench(benchmark::State& state, int n, int frames, bool cascades) {
   state.counters["judge_s"] = (total - read) / iterations;
   state.counters["cpu_s"] = cpu / iterations;
   state.counters["threads"] = options.threads;
+  if (!cascades) set_memory_counters(state, memory, n, frames);
   // A right surface fails the gate with probability ≤ α = 1e-3; this seed passes.
   state.SetLabel(passed ? "pass" : "FAIL");
+}
+
+// The floor: each frame read alone (a one-frame case naming its file) and every field
+// transformed, nothing kept.
+void run_floor_bench(benchmark::State& state, int n, int frames) {
+  fs::path case_path;
+  try {
+    case_path = directories().case_file(n, frames);
+  } catch (const std::exception& e) {
+    any_failed = true;
+    state.SkipWithError(e.what());
+    return;
+  }
+  const auto whole = swell::validation::read_case_file(case_path);
+  const int threads = gate_threads();
+  const swell::bench::PeakMemory memory;
+  std::vector<std::complex<double>> spectrum;
+  for (auto _ : state) {
+    for (int f = 0; f < frames; ++f) {
+      auto one = whole;
+      one.ocean.frames = 1;
+      one.ocean.t0 = whole.ocean.time(f);
+      one.input.files = swell::validation::frame_file_name(whole.input.files, f);
+      const auto frame = swell::validation::read_frames(one, "", {}, threads);
+      for (const auto& [field, values] : frame.frames.front().fields) {
+        swell::validation::field_spectrum(values, frame.sampling(), spectrum);
+        benchmark::DoNotOptimize(spectrum.data());
+      }
+    }
+  }
+  set_memory_counters(state, memory, n, frames);
+  state.counters["threads"] = threads;
 }
 
 }  // namespace
@@ -200,12 +263,27 @@ int main(int argc, char** argv) {
                                           ", dt 0.1 s, choppiness 0.8, seed 2024, fp32 EXR");
   benchmark::AddCustomContext("threads", std::to_string(gate_threads()) +
                                              " (SWELL_GATE_THREADS; 0 = every hardware thread)");
-  for (const auto& [n, frames] : {std::pair{128, 8}, std::pair{256, 16}, std::pair{512, 64}}) {
+  for (const auto& [n, frames] : {std::pair{128, 8}, std::pair{512, 64}}) {
     benchmark::RegisterBenchmark(
         ("gate/" + std::to_string(n) + "/" + std::to_string(frames)).c_str(), run_gate_bench, n,
         frames, false)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
+  }
+  // Gate beside floor, N from 256² to 4096² (issue 42's sizes; the 2048² and 4096² frames take
+  // 0.8 and 3.2 GB of disk a frame count of 16).
+  for (const auto& [n, frames] : {std::pair{256, 16}, std::pair{256, 64}, std::pair{512, 16},
+                                  std::pair{512, 64}, std::pair{1024, 16}, std::pair{2048, 16},
+                                  std::pair{4096, 16}}) {
+    const std::string size = std::to_string(n) + "/" + std::to_string(frames);
+    benchmark::RegisterBenchmark(("gate_floor/" + size).c_str(), run_floor_bench, n, frames)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+    if (!(n == 512 && frames == 64)) {
+      benchmark::RegisterBenchmark(("gate/" + size).c_str(), run_gate_bench, n, frames, false)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    }
   }
   for (const auto& [n, frames] : {std::pair{64, 8}, std::pair{256, 16}}) {
     benchmark::RegisterBenchmark(
