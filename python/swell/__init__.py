@@ -204,6 +204,16 @@ def synth(case, impl="fftw", precision="float32", frames=None, fields=None):
     replacing the case's.
     """
     case = _case_of(case)
+    if isinstance(impl, str) and (impl == "lattice" or impl.startswith("lattice:")):
+        # The command's --impl lattice[:fft=NAME]: here the case says whether it is a lattice.
+        if case.kind != "lattice":
+            raise InvalidInput(f"impl {impl!r}: this case samples a {case.kind}; a lattice is the "
+                               f"case's ([sampling] kind = \"lattice\"), synthesized through "
+                               f"impl = the 1-D transforms' backend")
+        option = impl[len("lattice:"):] if impl.startswith("lattice:") else "fft=fftw"
+        if not option.startswith("fft=") or option == "fft=":
+            raise InvalidInput(f"impl {impl!r}: a lattice takes one option, fft=NAME, as lattice:fft=radix2")
+        impl = option[len("fft="):]
     if frames is not None and (isinstance(frames, bool) or not isinstance(frames, (int, np.integer))
                                or frames < 1):
         raise InvalidInput(f"frames = {frames!r}: give a count ≥ 1 (or None: the case's)")

@@ -36,6 +36,11 @@ def test_lattice_frames_equal_the_commands(tmp_path, sea):
     frames = swell.synth(lattice_case, precision="float64")
     assert frames["height"].shape == (4, 1024)
     np.testing.assert_array_equal(frames["height"], load_frames(out, 4)["height"])
+    # The command's spelling of the same choice.
+    spelled = swell.synth(lattice_case, impl="lattice:fft=fftw", precision="float64", fields=["height"])
+    np.testing.assert_array_equal(spelled["height"], frames["height"])
+    with pytest.raises(ValueError, match="samples a grid"):
+        swell.synth(sea, impl="lattice")
 
 
 PROBES = {
