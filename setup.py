@@ -1,6 +1,7 @@
-"""Builds the _swell extension with CMake from the swell checkout this folder belongs to (the
-same build as scripts/run's, for this Python: -DPython_EXECUTABLE) and puts it, with the
-TIFF/PNG reader module, into the package (docs/python.md §A virtual environment)."""
+"""`pip install` of this checkout (docs/python.md §1): builds the _swell extension with CMake (the
+same build as scripts/run's, for the installing Python: -DPython_EXECUTABLE) into build-pip/,
+and puts it, with the TIFF/PNG reader module, into the package python/swell. setuptools' own
+build folder goes there too, out of CMake's build/."""
 import os
 import pathlib
 import shutil
@@ -10,7 +11,8 @@ import sys
 from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
 
-SOURCE = pathlib.Path(__file__).resolve().parent.parent
+SOURCE = pathlib.Path(__file__).resolve().parent
+(SOURCE / "build-pip").mkdir(exist_ok=True)  # setuptools' egg-info and build folders go there
 
 
 class CMakeBuild(build_ext):
@@ -33,4 +35,6 @@ class CMakeBuild(build_ext):
                      target / "libswell_openimageio.so")
 
 
-setup(ext_modules=[Extension("swell._swell", sources=[])], cmdclass={"build_ext": CMakeBuild})
+setup(ext_modules=[Extension("swell._swell", sources=[])], cmdclass={"build_ext": CMakeBuild},
+      options={"build": {"build_base": str(SOURCE / "build-pip" / "setuptools")},
+               "egg_info": {"egg_base": str(SOURCE / "build-pip")}})
