@@ -270,8 +270,8 @@ int main(int argc, char** argv) {
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
   }
-  // Gate beside floor, N from 256² to 4096² (issue 42's sizes; the 2048² and 4096² frames take
-  // 0.8 and 3.2 GB of disk a frame count of 16).
+  // Gate beside floor, N from 256² to 4096² (the frames of 2048² and 4096² take 0.8 and 3.2 GB
+  // of disk at 16 frames, written once per run).
   for (const auto& [n, frames] : {std::pair{256, 16}, std::pair{256, 64}, std::pair{512, 16},
                                   std::pair{512, 64}, std::pair{1024, 16}, std::pair{2048, 16},
                                   std::pair{4096, 16}}) {
