@@ -85,6 +85,9 @@ const char* size_key(const Sampling& sampling) {
   return sampling.is_lattice() ? "[sampling] points" : "[grid] n";
 }
 
+
+}  // namespace
+
 std::string human_bytes(double bytes) {
   const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
   int u = 0;
@@ -94,8 +97,6 @@ std::string human_bytes(double bytes) {
   }
   return fmt::format("{:.3g} {}", bytes, units[u]);
 }
-
-}  // namespace
 
 SamplingSummary summarize_sampling(const OceanCase& ocean_case,
                                    const std::vector<double>* travelling) {

@@ -22,10 +22,6 @@ using CheckFunction = Results (*)(const Analysis&, OceanCheckReport&);
 struct TableEntry {
   OceanCheckRow row;
   CheckFunction run;
-  // What it reads that the analysis makes once for every check: the two-wave fit per wave
-  // vector (which needs the wave series), or the wave series alone (parseval, through the
-  // analysis backend, sums the series' transforms).
-  bool reads_wave_fits = false, reads_wave_series = false;
 };
 
 // Cost ranks: what each took at 512² × 64 frames on one thread of a 2-core machine (ms):
@@ -37,21 +33,21 @@ const std::vector<TableEntry>& table() {
       {{"hermitian", false, false, 1, "height (and imaginary parts when given)", 7, {}},
        check_hermitian},
       {{"parseval", false, false, 1, "every frame's height", 8, {}},
-       check_parseval, false, true},
+       check_parseval},
       {{"energy", true, true, 1, "frame 0's height", 9, {free_scale}}, check_energy},
       {{"spectrum", true, false, 1, "frame 0's height; every frame's for unexpected energy", 6, {}},
-       check_spectrum, false, true},
+       check_spectrum},
       {{"moments", true, false, 1, "frame 0's height", 4, {free_scale, no_wave_motion}},
        check_moments},
       {{"dispersion", false, false, 1, "the heights of ≥ 3 frames at identifiable times", 3,
         {too_few_frames, unidentifiable_times, above_nyquist}},
-       check_dispersion, true},
+       check_dispersion},
       {{"direction", true, false, 2, "the heights of ≥ 2 frames at identifiable times", 5,
         {too_few_frames, unidentifiable_times, too_few_wave_vectors}},
-       check_direction, true},
+       check_direction},
       {{"randomness", true, false, 1, "the heights of ≥ 2 frames, or of one at t = 0", 10,
         {unidentifiable_times, ambiguous_phase}},
-       check_randomness, true},
+       check_randomness},
       {{"statistics", true, false, 1, "frame 0's height; every frame's for hs_steady", 1,
         {too_few_frames}},
        check_statistics},
@@ -165,8 +161,8 @@ OceanCheckReport run_ocean_checks(const OceanCase& ocean_case, const FrameSequen
                                   const OceanCheckOptions& options,
                                   const std::vector<std::string>& checks) {
   for (const auto& name : checks) entry(name);
-  return run_on(Analysis(ocean_case, frames, options, expected_travelling_power(ocean_case)),
-                checks, true);
+  const MemoryFrameSource source(frames);
+  return run_on(Analysis(ocean_case, source, options, expected_travelling_power(ocean_case)), checks, true);
 }
 
 std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case,
@@ -175,29 +171,39 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
                                                      const std::vector<OceanCheckGroup>& groups,
                                                      std::vector<double> travelling_power,
                                                      int threads) {
+  const MemoryFrameSource source(frames);
+  return run_ocean_check_groups(ocean_case, source, options, groups, std::move(travelling_power), threads);
+}
+
+std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case,
+                                                     const FrameSource& frames,
+                                                     const OceanCheckOptions& options,
+                                                     const std::vector<OceanCheckGroup>& groups,
+                                                     std::vector<double> travelling_power,
+                                                     int threads) {
   for (const auto& group : groups) {
     for (const auto& name : group.checks) entry(name);
   }
-  // One analysis of the surface for every group.
-  const Analysis analysis(ocean_case, frames, options, std::move(travelling_power), threads);
-  // The wave series and per-wave fits the checks read, made first on every thread: a group that
-  // needed them would otherwise make them on one thread while the other groups wait for them.
-  auto any_group_reads = [&](auto reads) {
-    return std::any_of(groups.begin(), groups.end(), [&](const OceanCheckGroup& g) {
-      return std::any_of(table().begin(), table().end(), [&](const TableEntry& e) {
-        return reads(e) && selected(g.checks, e.row.name);
-      });
-    });
+  auto any_group_reads = [&](const char* name) {
+    return std::any_of(groups.begin(), groups.end(),
+                       [&](const OceanCheckGroup& g) { return selected(g.checks, name); });
   };
-  if (any_group_reads([](const TableEntry& e) { return e.reads_wave_fits; })) {
-    analysis.wave_fits();
-  } else if (options.analysis_backend == kAnalysisBackend &&
-             any_group_reads([](const TableEntry& e) { return e.reads_wave_series; })) {
-    analysis.wave_series();
+  // One analysis of the surface for every group. Its passes over the frames run first, on every
+  // thread: the checks then only read what they gathered. Frames whose files turn out, once
+  // all are read, to be stored in another precision than frame 0 said (a float frame among
+  // halves) are analysed again in the precision of them all.
+  std::optional<Analysis> analysis;
+  for (;;) {
+    const bool settled = frames.precision_final();
+    analysis.emplace(ocean_case, frames, options,
+                     settled ? std::move(travelling_power) : std::vector<double>(travelling_power), threads);
+    analysis->pass();
+    if (settled || frames.precision() == analysis->precision()) break;
   }
+  if (any_group_reads("dispersion") && analysis->frame_count() >= 3) analysis->dispersion_pass();
   std::vector<OceanCheckReport> parts(groups.size());
   detail::run_tasks(groups.size(), threads, [&](std::size_t g) {
-    parts[g] = run_on(analysis, groups[g].checks, g == 0);
+    parts[g] = run_on(*analysis, groups[g].checks, g == 0);
   });
   return parts;
 }

@@ -29,21 +29,26 @@ int statistical_check_count(SpectrumScale scale, std::size_t frames) {
 GateReport judge(const CaseFile& case_file, const reference::FrameSequence& frames,
                  std::vector<double> travelling_power,
                  const GateOptions& options, Clock::time_point start, double alpha_per_check) {
+  const MemoryFrameSource source(frames);
+  return judge(case_file, source, std::move(travelling_power), options, start, alpha_per_check);
+}
+
+GateReport judge(const CaseFile& case_file, const FrameSource& frames,
+                 std::vector<double> travelling_power,
+                 const GateOptions& options, Clock::time_point start, double alpha_per_check) {
   options.validate();
   const int threads = options.resolved_threads();
   GateReport report;
   report.subject = case_file.ocean.describe();
-  report.frames = int(frames.frames.size());
+  report.frames = int(frames.size());
   // A lattice's N samples are reported as N×1 (one row of points in n).
-  report.nx = frames.lattice ? int(frames.sampling().size()) : frames.grid.nx;
-  report.ny = frames.lattice ? 1 : frames.grid.ny;
-  report.samples = frames.lattice ? frames.sampling().describe()
-                                  : fmt::format("{}×{}", report.nx, report.ny);
-  for (Field field : reference::kAllFields) {
-    if (frames.has(field)) report.fields.push_back(reference::field_name(field));
-  }
+  const reference::Sampling sampling = frames.sampling();
+  report.nx = sampling.is_lattice() ? int(sampling.size()) : sampling.grid().nx;
+  report.ny = sampling.is_lattice() ? 1 : sampling.grid().ny;
+  report.samples = sampling.is_lattice() ? sampling.describe() : fmt::format("{}×{}", report.nx, report.ny);
+  for (Field field : frames.fields()) report.fields.push_back(reference::field_name(field));
   report.alpha = options.alpha;
-  report.statistical_checks = statistical_check_count(case_file.scale, frames.frames.size());
+  report.statistical_checks = statistical_check_count(case_file.scale, frames.size());
   report.alpha_per_check = std::isnan(alpha_per_check)
                                ? options.alpha / double(report.statistical_checks)
                                : alpha_per_check;
@@ -85,38 +90,52 @@ GateReport judge(const CaseFile& case_file, const reference::FrameSequence& fram
         summary.k_max));
   }
 
-  if (frames.storage_roundoff > 0) {
+  // The gate's power on this case (a single surface: a cascade set shares α otherwise), in the
+  // precision frame 0 shows; made again below in the rare case that the frames, once all read,
+  // show another.
+  const bool with_power = options.power && std::isnan(alpha_per_check);
+  std::string no_power;
+  auto make_power = [&](const FramePrecision& precision, const std::vector<double>& travelling) {
+    // A table the case's sampling cannot support (no resolved wave) is a note, never bad input:
+    // the frames are still judged.
+    no_power.clear();
+    try {
+      report.power = gate_power(case_file, options.alpha, precision.unit_roundoff,
+                                precision.storage_roundoff, travelling);
+    } catch (const InvalidInput& e) {
+      report.power.reset();
+      no_power = std::string("no power table: ") + e.what();
+    }
+  };
+  const FramePrecision assumed = frames.precision();
+  if (with_power) make_power(assumed, travelling_power);
+  // Bad input (a grid that does not match, no height field) is thrown by the analysis.
+  auto parts = run_ocean_check_groups(case_file.ocean, frames, check_options,
+                                      ocean_check_groups_longest_first(),
+                                      std::move(travelling_power), threads);
+  // The stored precision as every frame showed it (a file source knows it once all are read).
+  const FramePrecision precision = frames.precision();
+  if (with_power && !(precision == assumed)) {
+    make_power(precision, expected_travelling_power(case_file.ocean, threads));
+  }
+  if (precision.storage_roundoff > 0) {
     report.notes.push_back(fmt::format(
         "frames stored in half precision ({}): the exact checks allow each stored value an error "
         "of one ulp ({:.3g} of itself, rounding toward zero included) on top of float32 arithmetic, "
         "and no more",
         case_file.input.precision == "half" ? "declared by [input] precision"
                                             : "their every value is a half",
-        frames.storage_roundoff));
+        precision.storage_roundoff));
   }
-  // The gate's power on this case (a single surface: a cascade set shares α otherwise).
-  if (options.power && std::isnan(alpha_per_check)) {
-    // A table the case's sampling cannot support (no resolved wave) is a note, never bad input:
-    // the frames are still judged.
-    try {
-      report.power = gate_power(case_file, options.alpha, frames.unit_roundoff, frames.storage_roundoff,
-                                travelling_power);
-    } catch (const InvalidInput& e) {
-      report.notes.push_back(std::string("no power table: ") + e.what());
-    }
-  }
-  // Bad input (a grid that does not match, no height field) is thrown by the analysis.
-  auto parts = run_ocean_check_groups(case_file.ocean, frames, check_options,
-                                      ocean_check_groups_longest_first(),
-                                      std::move(travelling_power), threads);
+  if (!no_power.empty()) report.notes.push_back(no_power);
   // Merged in the table's order, the fitted scale of a free-scale case first.
   for (auto& part : parts) {
     for (auto& result : part.results) report.results.push_back(std::move(result));
     for (auto& entry : part.skipped) report.skipped.push_back(std::move(entry));
   }
   report.fitted_scale = parts.front().fitted_scale;
-  report.unit_roundoff = frames.unit_roundoff;
-  report.storage_roundoff = frames.storage_roundoff;
+  report.unit_roundoff = precision.unit_roundoff;
+  report.storage_roundoff = precision.storage_roundoff;
   auto position = [](const std::string& check) {
     return check == kFittedScaleCheck ? 0 : ocean_check_position(check) + 1;
   };

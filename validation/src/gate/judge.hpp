@@ -12,6 +12,7 @@
 #include "swell/validation/gate/report.hpp"
 #include "swell/validation/io/probe_series.hpp"
 #include "swell/validation/io/case_file.hpp"
+#include "swell/validation/io/frame_source.hpp"
 
 namespace swell::validation::gate_path {
 
@@ -26,6 +27,9 @@ int statistical_check_count(SpectrumScale scale, std::size_t frames);
 // `threads` threads needs more memory than the machine has; called before anything of the
 // grid's size is read.
 void require_gate_memory(const reference::OceanCase& ocean, std::size_t fields, int threads);
+// The same for one surface streamed through the analysis (run_gate.cpp): what it needs does not
+// depend on the frame count; the message names the figure and what to reduce.
+void require_streamed_gate_memory(const reference::OceanCase& ocean, std::size_t fields, int threads);
 
 // Every field of every frame of a surface, read and checked (size, finite values): `derived`
 // judges each field on every frame, since a fault can live in some frames only.
@@ -40,6 +44,10 @@ CaseFile surface_case_file(const CaseFile& set, const reference::OceanCase& ocea
 // `alpha_per_check` each (NaN: options.alpha shared by this surface's statistical checks alone;
 // a cascade set shares α over all its surfaces). `travelling_power`: τ(k) of the case on its
 // samples (expected_travelling_power in ocean_checks.hpp), evaluated once before reading.
+GateReport judge(const CaseFile& case_file, const FrameSource& frames,
+                 std::vector<double> travelling_power,
+                 const GateOptions& options, Clock::time_point start,
+                 double alpha_per_check = std::numeric_limits<double>::quiet_NaN());
 GateReport judge(const CaseFile& case_file, const reference::FrameSequence& frames,
                  std::vector<double> travelling_power,
                  const GateOptions& options, Clock::time_point start,

@@ -23,7 +23,7 @@ GateReport read_and_judge(const CaseFile& case_file, const GateOptions& options,
   if (case_file.is_probe_case()) return read_and_judge_probes(case_file, options, start);
   const int threads = options.resolved_threads();
   const auto& ocean = case_file.ocean;
-  require_gate_memory(ocean, case_file.input.channels.size(), threads);
+  require_streamed_gate_memory(ocean, case_file.input.channels.size(), threads);
   // The rest of the sampling rule before any frame is read (a case no frames can satisfy is
   // refused as such, not as a missing file); the analysis applies it again in the frames'
   // stored format. τ(k) over the samples is evaluated once, on every thread, for this rule and
@@ -31,13 +31,14 @@ GateReport read_and_judge(const CaseFile& case_file, const GateOptions& options,
   const auto sampling = ocean.sampling();
   std::vector<double> travelling = expected_travelling_power(ocean, threads);
   reference::require_valid_sampling(ocean, reference::kFloat64, 0, "", &travelling);
-  options.report_progress(fmt::format("reading {} frame{} on a {}…", ocean.frames,
-                                      ocean.frames == 1 ? "" : "s", sampling.describe()));
-  const auto frames = read_gate_frames(case_file, options.input_pattern, threads);
-  const double reading = seconds_since(start);
+  options.report_progress(fmt::format("reading and judging {} frame{} on a {}, one at a time…",
+                                      ocean.frames, ocean.frames == 1 ? "" : "s", sampling.describe()));
+  // The frames stream through the analysis (io/frame_source.hpp): read ahead on a thread of
+  // their own, frame by frame, never all at once.
+  const FileFrameSource frames(case_file, options.input_pattern);
   GateReport report = judge(case_file, frames, std::move(travelling), options, start);
   report.case_path = case_file.origin.string();
-  report.read_seconds = reading;
+  report.read_seconds = frames.reading_seconds();
   return report;
 }
 

@@ -288,34 +288,24 @@ NpyArray npy_of(const Grid& grid, const std::vector<double>& real, const std::ve
   return NpyArray::from_values(shape, values);
 }
 
-// The stored precision of frames read with the largest unit roundoff `stored` (a half's 2⁻¹¹
-// where a channel or array is half, a float's or a double's, or an integer quantization's),
-// declared by [input] precision or detected: float frames whose every value is a half were
-// stored in half (a GPU texture widened to float on the way out). Half frames are taken as
-// computed in float32 (unit_roundoff 2⁻²⁴) and stored to within one ulp (storage_roundoff 2⁻¹⁰,
-// docs/conventions.md §storage precision).
-void set_storage_precision(FrameSequence& sequence, double stored, const std::string& declared,
-                           const std::string& origin) {
-  const bool floating = stored == kHalfRoundoff || stored == kFloatRoundoff || stored == kDoubleRoundoff;
-  auto all_halves = [&] {
-    for (const auto& frame : sequence.frames) {
-      for (const auto* part : {&frame.fields, &frame.imaginary}) {
-        for (const auto& [field, values] : *part) {
-          if (!std::all_of(values.begin(), values.end(), is_half_value)) return false;
-        }
-      }
+}  // namespace
+
+bool all_half_values(const FieldFrame& frame) {
+  for (const auto* part : {&frame.fields, &frame.imaginary}) {
+    for (const auto& [field, values] : *part) {
+      if (!std::all_of(values.begin(), values.end(), is_half_value)) return false;
     }
-    return true;
-  };
-  auto store_as_half = [&] {
-    sequence.unit_roundoff = kFloatRoundoff;
-    sequence.storage_roundoff = kHalfUlp;
-  };
-  sequence.unit_roundoff = stored;
-  sequence.storage_roundoff = 0;
+  }
+  return true;
+}
+
+FramePrecision storage_precision(double stored, bool all_halves, const std::string& declared,
+                                 const std::string& origin) {
+  const bool floating = stored == kHalfRoundoff || stored == kFloatRoundoff || stored == kDoubleRoundoff;
+  const FramePrecision half{kFloatRoundoff, kHalfUlp};
   if (declared.empty()) {
-    if (stored == kHalfRoundoff || (stored == kFloatRoundoff && all_halves())) store_as_half();
-    return;
+    if (stored == kHalfRoundoff || (stored == kFloatRoundoff && all_halves)) return half;
+    return {stored, 0};
   }
   if (!floating) {
     throw InvalidInput(fmt::format("{}: [input] precision = \"{}\" applies to floating-point "
@@ -332,11 +322,20 @@ void set_storage_precision(FrameSequence& sequence, double stored, const std::st
                                    origin, declared,
                                    stored == kHalfRoundoff ? "half" : "float", declared));
   }
-  if (declared == "half") {
-    store_as_half();
-  } else {
-    sequence.unit_roundoff = declared_roundoff;
-  }
+  if (declared == "half") return half;
+  return {declared_roundoff, 0};
+}
+
+namespace {
+
+void set_storage_precision(FrameSequence& sequence, double stored, const std::string& declared,
+                           const std::string& origin) {
+  // Whether every value is a half matters only for undeclared float frames: scanned only then.
+  const bool scan = declared.empty() && stored == kFloatRoundoff;
+  const bool halves = scan && std::all_of(sequence.frames.begin(), sequence.frames.end(), all_half_values);
+  const FramePrecision precision = storage_precision(stored, halves, declared, origin);
+  sequence.unit_roundoff = precision.unit_roundoff;
+  sequence.storage_roundoff = precision.storage_roundoff;
 }
 
 }  // namespace
@@ -517,114 +516,164 @@ InputSpec write_frames(const fs::path& directory, const FrameSequence& frames,
   return frame_input_spec(fields, options);
 }
 
-reference::FrameSequence read_frames(const CaseFile& case_file, const std::string& pattern_override,
-                                     const FieldFilter& keep, int threads) {
-  const auto& ocean = case_file.ocean;
-  const auto& input = case_file.input;
-  const std::string origin = pattern_override.empty() ? "[input] files" : "--input";
-  if (pattern_override.empty() && input.files.empty()) {
+struct FrameFileReader::Layout {
+  std::string origin, pattern;
+  StoredFormat format = StoredFormat::exr;
+  Pattern parsed;
+  Grid grid;  // a lattice's N points as one row
+  bool lattice = false;
+  Field first_field = Field::height;
+};
+
+FrameReadScratch::FrameReadScratch() : pixels_(std::make_unique<detail::PixelScratch>()) {}
+FrameReadScratch::~FrameReadScratch() = default;
+
+FrameFileReader::FrameFileReader(const CaseFile& case_file, const std::string& pattern_override,
+                                 int threads_per_file)
+    : ocean_(case_file.ocean), input_(case_file.input), layout_(std::make_shared<Layout>()),
+      threads_per_file_(std::max(1, threads_per_file)) {
+  Layout& l = *layout_;
+  l.origin = pattern_override.empty() ? "[input] files" : "--input";
+  if (pattern_override.empty() && input_.files.empty()) {
     throw InvalidInput("the case has no frames to read: give [input] files = \"frame_%04d.exr\" "
                        "(or an input pattern on the command line)");
   }
-  if (input.channels.empty()) {
+  if (input_.channels.empty()) {
     throw InvalidInput("the case's [input] names no field: give at least one of height, slope_x, "
                        "slope_y, disp_x, disp_y, jacobian with its channel or file suffix");
   }
-  for (const auto& [field, range] : input.value_ranges) {
-    if (!input.channels.count(field)) {
+  for (const auto& [field, range] : input_.value_ranges) {
+    if (!input_.channels.count(field)) {
       throw InvalidInput(fmt::format("[input] value_range gives a range for {}, which [input] does "
                                      "not provide",
                                      reference::field_name(field)));
     }
   }
-  const std::string pattern =
-      pattern_override.empty() ? (case_file.directory / input.files).string() : pattern_override;
-  const StoredFormat format = stored_format_of(pattern, origin);
-  Pattern parsed;
+  l.pattern = pattern_override.empty() ? (case_file.directory / input_.files).string() : pattern_override;
+  l.format = stored_format_of(l.pattern, l.origin);
   try {
-    parsed = parse_pattern(pattern);
+    l.parsed = parse_pattern(l.pattern);
   } catch (const InvalidInput& e) {
-    throw InvalidInput(origin + ": " + e.what());
+    throw InvalidInput(l.origin + ": " + e.what());
   }
-  if (!parsed.has_conversion && ocean.frames > 1) {
+  if (!l.parsed.has_conversion && ocean_.frames > 1) {
     throw InvalidInput(fmt::format("{}: \"{}\" has no frame number (such as %04d) but the case has "
                                    "{} frames ([time] frames)",
-                                   origin, pattern, ocean.frames));
+                                   l.origin, l.pattern, ocean_.frames));
   }
-  // A lattice's N points are read as one row of N samples.
-  const bool lattice = ocean.is_lattice();
-  const Grid grid = lattice ? Grid{static_cast<int>(ocean.lattice->points()), 1, ocean.grid.lx,
-                                   ocean.grid.ly}
-                            : ocean.grid;
-  if (lattice && format != StoredFormat::npy && format != StoredFormat::raw) {
+  l.lattice = ocean_.is_lattice();
+  l.grid = l.lattice ? Grid{static_cast<int>(ocean_.lattice->points()), 1, ocean_.grid.lx, ocean_.grid.ly}
+                     : ocean_.grid;
+  if (l.lattice && l.format != StoredFormat::npy && l.format != StoredFormat::raw) {
     throw InvalidInput(fmt::format("{}: \"{}\": a lattice case reads .npy or .raw frames (one "
                                    "array of the N points per field); images need a grid",
-                                   origin, pattern));
+                                   l.origin, l.pattern));
   }
-  auto file_of = [&](int f, Field field) {
-    return fs::path(with_suffix(expand(parsed, f),
-                                one_file_per_field(format) ? input.channels.at(field) : ""));
-  };
+  l.first_field = input_.channels.begin()->first;
+}
 
+FrameFileReader::~FrameFileReader() = default;
+
+int FrameFileReader::frames() const { return ocean_.frames; }
+const std::string& FrameFileReader::origin() const { return layout_->origin; }
+
+FrameSequence FrameFileReader::empty_sequence() const {
   FrameSequence sequence;
-  sequence.grid = ocean.grid;
-  sequence.lattice = ocean.lattice;
-  const Field first_field = input.channels.begin()->first;
+  sequence.grid = ocean_.grid;
+  sequence.lattice = ocean_.lattice;
+  return sequence;
+}
+
+fs::path FrameFileReader::file_of(int f, Field field) const {
+  const Layout& l = *layout_;
+  return fs::path(with_suffix(expand(l.parsed, f),
+                              one_file_per_field(l.format) ? input_.channels.at(field) : ""));
+}
+
+double FrameFileReader::read(int f, FieldFrame& frame, FrameReadScratch& scratch,
+                             const FieldFilter& keep) const {
+  const Layout& l = *layout_;
+  double roundoff = 0;
+  const std::function<bool(Field)> keep_here = [&](Field field) { return !keep || keep(f, field); };
+  frame.time = ocean_.time(f);
+  frame.fields.clear();
+  frame.imaginary.clear();
+  for (const auto& [field, channel] : input_.channels) {
+    if (!one_file_per_field(l.format) && field != l.first_field) break;  // one file for all fields
+    const fs::path path = file_of(f, field);
+    std::error_code error;
+    if (!fs::exists(path, error)) {
+      throw InvalidInput(fmt::format("{}: missing frame file (frame {} of {}{})", path.string(), f,
+                                     ocean_.frames,
+                                     one_file_per_field(l.format)
+                                         ? ", " + reference::field_name(field)
+                                         : std::string()));
+    }
+    if (fs::is_directory(path, error)) {
+      throw InvalidInput(path.string() + ": is a directory, not a frame file");
+    }
+    double u = 0;
+    switch (l.format) {
+      case StoredFormat::exr:
+      case StoredFormat::tiff:
+      case StoredFormat::png:
+        u = detail::read_image_frame(path, image_kind_of(l.format), l.grid, input_, keep_here, frame,
+                                     scratch.pixels(), threads_per_file_);
+        break;
+      case StoredFormat::npy: u = read_npy_field(path, l.grid, field, frame, l.lattice); break;
+      case StoredFormat::raw: u = read_raw_field(path, l.grid, field, input_.raw_type, frame); break;
+    }
+    roundoff = std::max(roundoff, u);
+  }
+  // One file per field: each was read whole (and checked); drop those not wanted.
+  for (const auto& [field, channel] : input_.channels) {
+    if (!keep_here(field)) {
+      frame.fields.erase(field);
+      frame.imaginary.erase(field);
+    }
+  }
+  return roundoff;
+}
+
+void FrameFileReader::require_no_extra_frame() const {
+  // More frames on disk than the case says: the case and the files disagree.
+  if (!layout_->parsed.has_conversion) return;
+  const fs::path next = file_of(ocean_.frames, layout_->first_field);
+  std::error_code error;
+  if (fs::exists(next, error)) {
+    throw InvalidInput(fmt::format("{}: a frame beyond the case's {} ([time] frames = {}): the "
+                                   "files hold more frames than the case says",
+                                   next.string(), ocean_.frames, ocean_.frames));
+  }
+}
+
+FramePrecision FrameFileReader::precision(double stored, bool all_halves) const {
+  return storage_precision(stored, all_halves, input_.precision, layout_->origin);
+}
+
+bool FrameFileReader::needs_half_scan(double stored) const {
+  return input_.precision.empty() && stored == kFloatRoundoff;
+}
+
+reference::FrameSequence read_frames(const CaseFile& case_file, const std::string& pattern_override,
+                                     const FieldFilter& keep, int threads) {
+  const auto& ocean = case_file.ocean;
   // Frames are independent files: read on `threads` threads (0: every hardware thread), each
   // taking every T-th frame; what threads are left over decode within a file. The error
   // reported is that of the lowest frame that failed, as a sequential read would report it.
   const int all_threads = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
   const int reading_threads = std::clamp(all_threads, 1, std::max(1, ocean.frames));
-  const int threads_per_file = std::max(1, all_threads / reading_threads);
-  auto read_frame = [&](int f, FieldFrame& frame, detail::PixelScratch& scratch) {
-    double roundoff = 0;
-    const std::function<bool(Field)> keep_here = [&](Field field) { return !keep || keep(f, field); };
-    frame.time = ocean.time(f);
-    for (const auto& [field, channel] : input.channels) {
-      if (!one_file_per_field(format) && field != first_field) break;  // one file for all fields
-      const fs::path path = file_of(f, field);
-      std::error_code error;
-      if (!fs::exists(path, error)) {
-        throw InvalidInput(fmt::format("{}: missing frame file (frame {} of {}{})", path.string(), f,
-                                       ocean.frames,
-                                       one_file_per_field(format)
-                                           ? ", " + reference::field_name(field)
-                                           : std::string()));
-      }
-      if (fs::is_directory(path, error)) {
-        throw InvalidInput(path.string() + ": is a directory, not a frame file");
-      }
-      double u = 0;
-      switch (format) {
-        case StoredFormat::exr:
-        case StoredFormat::tiff:
-        case StoredFormat::png:
-          u = detail::read_image_frame(path, image_kind_of(format), grid, input, keep_here, frame,
-                                       scratch, threads_per_file);
-          break;
-        case StoredFormat::npy: u = read_npy_field(path, grid, field, frame, lattice); break;
-        case StoredFormat::raw: u = read_raw_field(path, grid, field, input.raw_type, frame); break;
-      }
-      roundoff = std::max(roundoff, u);
-    }
-    // One file per field: each was read whole (and checked); drop those not wanted.
-    for (const auto& [field, channel] : input.channels) {
-      if (!keep_here(field)) {
-        frame.fields.erase(field);
-        frame.imaginary.erase(field);
-      }
-    }
-    return roundoff;
-  };
+  const FrameFileReader reader(case_file, pattern_override, std::max(1, all_threads / reading_threads));
+  FrameSequence sequence = reader.empty_sequence();
   sequence.frames.resize(static_cast<std::size_t>(ocean.frames));
   std::vector<double> roundoffs(sequence.frames.size(), 0.0);
   std::vector<std::exception_ptr> errors(sequence.frames.size());
   // One task per reading thread, each with its own decoding scratch, taking every T-th frame.
   detail::run_tasks(std::size_t(reading_threads), reading_threads, [&](std::size_t first) {
-    detail::PixelScratch scratch;
+    FrameReadScratch scratch;
     for (int f = int(first); f < ocean.frames; f += reading_threads) {
       try {
-        roundoffs[f] = read_frame(f, sequence.frames[f], scratch);
+        roundoffs[f] = reader.read(f, sequence.frames[f], scratch, keep);
       } catch (...) {
         errors[f] = std::current_exception();
         return;  // this thread's later frames would only fail after the same one
@@ -635,17 +684,8 @@ reference::FrameSequence read_frames(const CaseFile& case_file, const std::strin
     if (error) std::rethrow_exception(error);
   }
   const double roundoff = *std::max_element(roundoffs.begin(), roundoffs.end());
-  // More frames on disk than the case says: the case and the files disagree.
-  if (parsed.has_conversion) {
-    const fs::path next = file_of(ocean.frames, first_field);
-    std::error_code error;
-    if (fs::exists(next, error)) {
-      throw InvalidInput(fmt::format("{}: a frame beyond the case's {} ([time] frames = {}): the "
-                                     "files hold more frames than the case says",
-                                     next.string(), ocean.frames, ocean.frames));
-    }
-  }
-  set_storage_precision(sequence, roundoff, input.precision, origin);
+  reader.require_no_extra_frame();
+  set_storage_precision(sequence, roundoff, case_file.input.precision, reader.origin());
   return sequence;
 }
 

@@ -36,16 +36,21 @@ bool fit_two_waves(std::span<const Complex> phases, std::span<const Complex> y, 
     r1 += std::conj(e) * y[f];
     r2 += e * y[f];
   }
-  // Normal equations [[F, S], [S*, F]] (a, b) = (r1, r2); eigenvalues F ± |S|.
-  if (frames - std::abs(s) < 0.05 * frames) return false;
-  const double det = frames * frames - std::norm(s);
-  a = (frames * r1 - s * r2) / det;
-  b = (frames * r2 - std::conj(s) * r1) / det;
+  if (!solve_two_waves(frames, s, r1, r2, a, b)) return false;
   residual = 0;
   for (std::size_t f = 0; f < phases.size(); ++f) {
     const Complex e = phases[f];
     residual += std::norm(y[f] - a * e - b * std::conj(e));
   }
+  return true;
+}
+
+bool solve_two_waves(double frames, Complex s, Complex r1, Complex r2, Complex& a, Complex& b) {
+  // Normal equations [[F, S], [S*, F]] (a, b) = (r1, r2); eigenvalues F ± |S|.
+  if (frames - std::abs(s) < 0.05 * frames) return false;
+  const double det = frames * frames - std::norm(s);
+  a = (frames * r1 - s * r2) / det;
+  b = (frames * r2 - std::conj(s) * r1) / det;
   return true;
 }
 

@@ -60,6 +60,8 @@ SamplingSummary summarize_sampling(const OceanCase& ocean_case,
 
 // The bytes the machine has available to a new process (Linux: MemAvailable), or 0 when unknown.
 std::uint64_t available_memory_bytes();
+// "1.5 GiB": bytes in binary units, three significant digits.
+std::string human_bytes(double bytes);
 
 // Applies the rule for frames made or stored in `numbers`. `bytes_needed` is the command's
 // working set (0: not checked); it is checked first, before anything of the grid's size is

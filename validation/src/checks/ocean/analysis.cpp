@@ -1,4 +1,5 @@
 #include "checks/ocean/analysis.hpp"
+#include "swell/reference/phase.hpp"
 #include "swell/validation/stats/statistics.hpp"
 
 namespace swell::validation::ocean_analysis {
@@ -9,10 +10,301 @@ double mean_square(const std::vector<double>& v) {
   return sum / double(v.size());
 }
 
-std::vector<const std::vector<double>*> heights(const FrameSequence& frames) {
-  std::vector<const std::vector<double>*> out;
-  for (std::size_t f = 0; f < frames.frames.size(); ++f) out.push_back(&frames.field(int(f), Field::height));
-  return out;
+namespace {
+
+const std::vector<double>& height_of(const reference::FieldFrame& frame, std::size_t f) {
+  const auto it = frame.fields.find(Field::height);
+  if (it == frame.fields.end()) throw InvalidInput(fmt::format("frame {} has no height field", f));
+  return it->second;
+}
+
+}  // namespace
+
+Analysis::Analysis(const OceanCase& ocean_case, const FrameSource& frames, const OceanCheckOptions& options,
+                   std::vector<double> travelling, int threads)
+    : c_(ocean_case), frames_(frames), options_(options), sampling_(ocean_case.sampling()),
+      threads_(std::max(1, threads)) {
+  const Sampling given = frames.sampling();
+  if (!given.same_as(sampling_)) {
+    throw InvalidInput(fmt::format("frames are on a {} but the case says {}", given.describe(),
+                                   sampling_.describe()));
+  }
+  if (frames.size() == 0) throw InvalidInput("no frames to check");
+  if (!frames.has(Field::height)) {
+    throw InvalidInput("the frames have no height field: every ocean check needs it");
+  }
+  require(options.alpha > 0 && options.alpha < 1, "alpha", "in (0, 1)", options.alpha);
+  count_ = sampling_.size();
+  log2n_ = std::max(1.0, std::log2(double(count_)));
+  precision_ = frames.precision();
+  u_ = std::max(precision_.unit_roundoff, kFp64Roundoff);
+  storage_ = precision_.storage_roundoff;
+  for (std::size_t f = 0; f < frames.size(); ++f) times_.push_back(frames.time(f));
+  {
+    const auto first = frames.frame(0, [](int, Field field) { return field == Field::height; });
+    height0_ = height_of(*first, 0);
+  }
+
+  if (travelling.size() != sampling_.size()) {
+    throw InternalError("Analysis: travelling power of the wrong size");
+  }
+  shared_->tau = std::move(travelling);
+  // Two independent parts side by side (the second is an FFT): run_tasks rethrows the first
+  // part's error before the second's, so the error reported is the one a sequential run meets
+  // first.
+  detail::run_tasks(2, threads_, [&](std::size_t part) {
+    if (part == 0) {
+      shared_->mu = expected_periodogram(shared_->tau, sampling_);  // τ(k) + τ(−k): Ψ evaluated once
+      // The validity rule every command shares (reference/sampling_validity.hpp), in the
+      // number format the frames were stored in: float32 (EXR, TIFF) or coarser (PNG) unless
+      // they carry fp64's rounding.
+      reference::require_valid_sampling(
+          c_, precision_.unit_roundoff > 2 * kFp64Roundoff ? reference::kFloat32 : reference::kFloat64,
+          0, "", &shared_->tau);
+    } else {
+      field_spectrum(height0_, sampling_, shared_->spectrum0, &spectral_energy0_);
+      mean_square0_ = mean_square(height0_);
+    }
+  });
+
+  const double expected_total = std::accumulate(shared_->mu.begin(), shared_->mu.end(), 0.0);
+  if (!(expected_total > 0)) {
+    throw InvalidInput("the case's spectrum puts no energy on these samples (" + c_.describe() + ")");
+  }
+  // Rounding of the stored numbers moves a resolved wave vector's periodogram by < 10⁻⁶
+  // relative — far below any sampling effect the checks test.
+  floor_ = resolution_floor(u_, mean_square0_, count_);
+  // Half storage: its rounding, at most storage_² of the energy, white over the wave vectors,
+  // moves a resolved one's periodogram by < 10⁻⁴ relative — far below what a statistical check
+  // sees even summed over 10⁶ wave vectors (relative 10⁻³). Relative to the case's energy: the
+  // frames' own (mean h²) over their level (mean h² / Σμ), so that a scale error in the frames
+  // does not move which waves are resolved.
+  floor_ = std::max(floor_, 1e4 * storage_ * storage_ * expected_total / double(count_));
+
+  const double dkx = sampling_.dkx(), dky = sampling_.dky();
+  // Room for every wave vector of the half plane at once (about half the samples): grown by
+  // doubling, the copies touched twice the memory, a fresh array each time.
+  shared_->half_plane.reserve(count_ / 2 + 1);
+  for (std::size_t e = 0; e < count_; ++e) {
+    if (!sampling_.carries_energy(e)) continue;
+    const auto [n, m] = sampling_.wave_index(e);
+    if (!in_half_plane(n, m)) continue;
+    Wave w;
+    w.index = e;
+    w.minus_index = sampling_.conjugate(e);
+    w.kx = n * dkx;
+    w.ky = m * dky;
+    w.k = std::hypot(w.kx, w.ky);
+    w.omega = c_.omega(w.k);
+    w.theta = std::atan2(w.ky, w.kx);
+    w.mu = shared_->mu[e];
+    w.tau_plus = shared_->tau[e];
+    w.tau_minus = shared_->tau[w.minus_index];
+    shared_->half_plane.push_back(w);
+  }
+  if (options.free_scale) {
+    // The maximum-likelihood scale of exponential ordinates: the mean of I/μ over the
+    // resolved half plane (Whittle), resolution judged with the model scaled to the data's
+    // energy.
+    double sum = 0;
+    int used = 0;
+    for (const Wave& w : shared_->half_plane) {
+      if (!(w.mu > 0) || w.mu * mean_square0_ / expected_total < floor_) continue;
+      sum += std::norm(shared_->spectrum0[w.index]) / w.mu;
+      ++used;
+    }
+    scale_ = used > 0 ? sum / used : 0;
+    if (!(scale_ > 0)) throw InvalidInput("free scale: the height field is identically zero");
+    for (double& v : shared_->mu) v *= scale_;
+    for (double& v : shared_->tau) v *= scale_;
+    for (Wave& w : shared_->half_plane) {
+      w.mu *= scale_;
+      w.tau_plus *= scale_;
+      w.tau_minus *= scale_;
+    }
+  }
+  shared_->resolved.reserve(shared_->half_plane.size());
+  for (const Wave& w : shared_->half_plane) {
+    if (w.mu >= floor_ && w.mu > 0) shared_->resolved.push_back(w);
+  }
+  for (std::size_t e = 0; e < count_; ++e) {
+    if (!sampling_.carries_energy(e) || shared_->mu[e] < floor_) shared_->stray.push_back(e);
+  }
+  if (shared_->resolved.empty()) {
+    const bool rounding_hides_all = std::any_of(
+        shared_->half_plane.begin(), shared_->half_plane.end(), [](const Wave& w) { return w.mu > 0; });
+    if (rounding_hides_all) throw_rounding_hides_every_wave(std::max(u_, storage_), c_);  // coarse integer frames
+    throw InvalidInput("no wave vector of the sampling carries resolvable energy under the case's "
+                       "spectrum (" + c_.describe() + ")");
+  }
+}
+
+const FramePass& Analysis::pass() const {
+  std::call_once(pass_once_, [this] { run_pass(); });
+  return pass_;
+}
+
+// One frame at a time, in frame order: its height transformed once (frame 0's is spectrum0),
+// then on up to `threads_` threads side by side: each derived field against its definition,
+// the frame's own sums (strays, energies, Hermitian, Parseval), and the wave vectors' fit sums
+// in chunks. Each sum over frames is added to in frame order, so it is the sum a whole series
+// would give, bit for bit.
+void Analysis::run_pass() const {
+  FramePass& p = pass_;
+  const std::size_t frames = times_.size(), waves = shared_->resolved.size();
+  p.strays.assign(frames, FrameStray{});
+  p.spectral_energies.assign(frames, spectral_energy0_);
+  p.spatial_energies.assign(frames, 0);
+  p.height_sums.assign(frames, 0);
+  p.r1.assign(waves, Complex(0));
+  p.r2.assign(waves, Complex(0));
+  p.energy.assign(waves, 0.0);
+  p.groups = group_by_omega(shared_->resolved);
+  p.s.assign(p.groups.omegas.size(), Complex(0));
+  p.derived.start(*this);
+  if (options_.analysis_backend != kAnalysisBackend) p.parseval.start(*this);
+  const double scale = 1.0 / double(count_);
+  const bool grid = !sampling_.is_lattice();
+  std::vector<Complex> spectrum;   // ĥ of the frame in hand (after frame 0)
+  std::vector<Complex> phases(p.groups.omegas.size());  // e^(−iωt) per distinct ω
+  // Chunks of wave vectors, a few per thread, for whichever thread is free.
+  const std::size_t wave_chunks = std::min<std::size_t>(waves, std::size_t(2 * threads_));
+  const std::size_t derived_fields = p.derived.present.size();
+  frames_.stream({}, [&](std::size_t f, const reference::FieldFrame& frame) {
+    const std::vector<double>& h = height_of(frame, f);
+    std::span<const Complex> hat;
+    if (f == 0) {
+      hat = shared_->spectrum0;
+    } else {
+      const auto transform = analysis_transform(h, sampling_, &p.spectral_energies[f]);
+      spectrum.resize(count_);
+      for (std::size_t e = 0; e < count_; ++e) spectrum[e] = transform[e] * scale;
+      hat = spectrum;
+    }
+    {
+      long double spatial = 0;
+      double sum = 0;
+      for (double x : h) {
+        spatial += (long double)x * x;
+        sum += x * x;
+      }
+      p.spatial_energies[f] = spatial;
+      p.height_sums[f] = sum;
+    }
+    for (std::size_t g = 0; g < phases.size(); ++g) {
+      phases[g] = reference::unit_phasor(-reference::reduced_phase(p.groups.omegas[g], times_[f]));
+      p.s[g] += std::conj(phases[g]) * std::conj(phases[g]);
+    }
+    const double height_power = p.height_sums[f] / double(count_);  // mean_square(h), bit for bit
+    detail::run_tasks(derived_fields + 1 + wave_chunks, threads_, [&](std::size_t task) {
+      if (task < derived_fields) {
+        p.derived.add(*this, f, task, frame, hat, height_power);
+        return;
+      }
+      if (task == derived_fields) {
+        FrameStray& s = p.strays[f];
+        for (std::size_t e : shared_->stray) {
+          const double power = std::norm(hat[e]);
+          s.energy += power;
+          if (!(shared_->mu[e] > 0)) s.empty += power;
+          if (power > s.largest) {
+            s.largest = power;
+            s.largest_at = e;
+          }
+          if (grid) {
+            const auto [n, m] = sampling_.wave_index(e);
+            if (std::abs(n) >= sampling_.grid().nx / 4 && std::abs(m) >= sampling_.grid().ny / 4) s.corner += power;
+            if (Grid::is_nyquist(n, sampling_.grid().nx) || Grid::is_nyquist(m, sampling_.grid().ny)) s.nyquist += power;
+          }
+        }
+        s.mean_level = hat[0].real();
+        s.mean_square = double(p.spectral_energies[f]) / double(count_);
+        p.hermitian.add(*this, f, frame, hat);
+        if (p.parseval.state) p.parseval.add(*this, h);
+        return;
+      }
+      const std::size_t chunk = task - derived_fields - 1;
+      const std::size_t begin = chunk * waves / wave_chunks, end = (chunk + 1) * waves / wave_chunks;
+      for (std::size_t w = begin; w < end; ++w) {
+        const Complex e = phases[p.groups.group[w]];
+        const Complex y = hat[shared_->resolved[w].index];
+        p.r1[w] += std::conj(e) * y;
+        p.r2[w] += e * y;
+        p.energy[w] += std::norm(y);
+      }
+    });
+  });
+  p.parseval.state.reset();
+  release_analysis_scratch();
+}
+
+const std::vector<WaveFit>& Analysis::wave_fits() const {
+  std::call_once(fits_once_, [this] {
+    const FramePass& p = pass();
+    const double frames = double(times_.size());
+    for (std::size_t w = 0; w < shared_->resolved.size(); ++w) {
+      WaveFit fit;
+      fit.wave = &shared_->resolved[w];
+      if (!solve_two_waves(frames, p.s[p.groups.group[w]], p.r1[w], p.r2[w], fit.a, fit.b)) continue;
+      fit.energy = p.energy[w];
+      fits_.push_back(fit);
+    }
+  });
+  return fits_;
+}
+
+const DispersionPass& Analysis::dispersion_pass() const {
+  std::call_once(dispersion_once_, [this] { run_dispersion_pass(); });
+  return dispersion_;
+}
+
+// The heights streamed again (height only), each frame's transform at the fitted wave vectors.
+void Analysis::run_dispersion_pass() const {
+  const auto& fits = wave_fits();
+  const FramePass& p = pass();
+  DispersionPass& d = dispersion_;
+  double dt = 0;
+  for (std::size_t f = 1; f < times_.size(); ++f) dt = std::max(dt, times_[f] - times_[f - 1]);
+  d.max_omega = 0.95 * kPi / dt;
+  for (const WaveFit& f : fits) {
+    if (f.wave->omega > 0 && 3 * f.wave->omega / 2 < d.max_omega) d.strongest.push_back(&f);
+  }
+  std::sort(d.strongest.begin(), d.strongest.end(),
+            [](const WaveFit* x, const WaveFit* y) { return x->energy > y->energy; });
+  if (d.strongest.size() > 24) d.strongest.resize(24);
+  d.series.assign(d.strongest.size(), std::vector<Complex>(times_.size()));
+  for (WaveFit& fit : fits_) fit.residual = 0;
+  const double scale = 1.0 / double(count_);
+  std::vector<Complex> phases(p.groups.omegas.size());
+  const std::size_t chunks = std::min<std::size_t>(fits.size(), std::size_t(2 * threads_));
+  frames_.stream([](int, Field field) { return field == Field::height; },
+                 [&](std::size_t f, const reference::FieldFrame& frame) {
+    std::span<const Complex> transform;
+    double factor = 1;
+    if (f == 0) {
+      transform = shared_->spectrum0;
+    } else {
+      transform = analysis_transform(height_of(frame, f), sampling_);
+      factor = scale;
+    }
+    // y exactly as the first pass saw it: frame 0's ĥ, or X(k) · (1/N).
+    auto value = [&](std::size_t index) { return f == 0 ? transform[index] : transform[index] * factor; };
+    for (std::size_t g = 0; g < phases.size(); ++g) {
+      phases[g] = reference::unit_phasor(-reference::reduced_phase(p.groups.omegas[g], times_[f]));
+    }
+    detail::run_tasks(chunks, threads_, [&](std::size_t chunk) {
+      const std::size_t begin = chunk * fits_.size() / chunks, end = (chunk + 1) * fits_.size() / chunks;
+      for (std::size_t i = begin; i < end; ++i) {
+        WaveFit& fit = fits_[i];
+        const std::size_t w = std::size_t(fit.wave - shared_->resolved.data());
+        const Complex e = phases[p.groups.group[w]];
+        const Complex y = value(fit.wave->index);
+        fit.residual += std::norm(y - fit.a * e - fit.b * std::conj(e));
+      }
+    });
+    for (std::size_t j = 0; j < d.strongest.size(); ++j) d.series[j][f] = value(d.strongest[j]->wave->index);
+  });
+  release_analysis_scratch();
 }
 
 [[noreturn]] void throw_rounding_hides_every_wave(double u, const OceanCase& c) {

@@ -1,8 +1,10 @@
 #pragma once
 // What every ocean check reads (ocean_checks.hpp): one analysis of a surface's frames against
-// its case — μ(k) and τ(k) on the samples, frame 0's spectrum, the resolved wave vectors, and,
-// made once on first use, every frame's spectrum at them and the two-wave fit per wave vector —
-// and the helpers the checks share. One file per check beside it.
+// its case — μ(k) and τ(k) on the samples, frame 0's spectrum, the resolved wave vectors — and
+// what one pass over the frames, made once, gathers for every check: per wave vector the sums
+// of the two-wave fit, per frame the sums the checks judge (FramePass); and the second pass the
+// dispersion residual needs. The frames stream through (io/frame_source.hpp), one at a time, so
+// nothing here grows with their number but a few numbers per frame. One file per check beside it.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -21,6 +23,7 @@
 #include "swell/impls/transform.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/sampling_validity.hpp"
+#include "swell/validation/io/frame_source.hpp"
 #include "swell/validation/checks/ocean_checks.hpp"
 #include "swell/validation/stats/periodogram.hpp"
 #include "swell/validation/stats/wave_fit.hpp"
@@ -39,34 +42,6 @@ constexpr double kDegree = 180.0 / kPi;
 constexpr double kFp64Roundoff = 0x1p-53;
 
 double mean_square(const std::vector<double>& v);
-// Σ x² over each of `fields`, accumulated in `Sum` (double: mean_square's sum; long double:
-// parseval's), each exactly the sequential loop's sum — the same additions in the same order —
-// but four fields side by side: a sequential sum waits ~4 cycles on each addition, and four
-// independent ones hide behind each other (parseval and statistics.hs_steady sum every frame).
-template <typename Sum>
-std::vector<Sum> sums_of_squares(const std::vector<const std::vector<double>*>& fields) {
-  std::vector<Sum> sums(fields.size(), Sum(0));
-  std::size_t f = 0;
-  for (; f + 4 <= fields.size(); f += 4) {
-    const std::vector<double>&a = *fields[f], &b = *fields[f + 1], &c = *fields[f + 2], &d = *fields[f + 3];
-    if (a.size() != b.size() || a.size() != c.size() || a.size() != d.size()) break;
-    Sum sa = 0, sb = 0, sc = 0, sd = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      sa += Sum(a[i]) * a[i];
-      sb += Sum(b[i]) * b[i];
-      sc += Sum(c[i]) * c[i];
-      sd += Sum(d[i]) * d[i];
-    }
-    sums[f] = sa, sums[f + 1] = sb, sums[f + 2] = sc, sums[f + 3] = sd;
-  }
-  for (; f < fields.size(); ++f) {
-    for (double x : *fields[f]) sums[f] += Sum(x) * x;
-  }
-  return sums;
-}
-
-// The height field of every frame, in frame order.
-std::vector<const std::vector<double>*> heights(const FrameSequence& frames);
 std::string verdict(bool passed);
 
 // One energy-carrying wave vector k of the half plane (its partner −k is implied).
@@ -136,28 +111,6 @@ OmegaGroups group_by_omega(const Waves& waves) {
   return out;
 }
 
-// A series of `frames` values per resolved wave vector, all in one array: one allocation of
-// 16 B × waves × frames (128 MiB at 512² × 64 frames), on huge pages where the kernel gives them,
-// instead of one vector per wave vector, whose 131 072 allocations and page faults took a tenth
-// of the gate's CPU at that size.
-class WaveSeries {
- public:
-  void assign(std::size_t waves, std::size_t frames) {
-    frames_ = frames;
-    // Not zeroed first: every entry is written, and zeroing 128 MiB on one thread (its page
-    // faults) held the others up.
-    buffer_ = std::make_unique<impls::HostBuffer>(std::max<std::size_t>(1, waves * frames) * sizeof(Complex),
-                                                  impls::HostBuffer::Fill::none);
-  }
-  std::span<const Complex> operator[](std::size_t wave) const { return {data() + wave * frames_, frames_}; }
-  Complex& at(std::size_t wave, std::size_t frame) { return data()[wave * frames_ + frame]; }
-
- private:
-  Complex* data() const { return static_cast<Complex*>(buffer_->host_data()); }
-  std::size_t frames_ = 0;
-  std::unique_ptr<impls::HostBuffer> buffer_;
-};
-
 // One frame's energy where the case puts none: at k = 0, on wave vectors the sampling leaves
 // empty (a grid's Nyquist row and column) and where μ is below the resolution floor —
 // mean-square units (Σ |ĥ|² over those wave vectors).
@@ -194,126 +147,77 @@ MeasuredLevel measure_level(const Analysis& a);
 // factors and their products (× 8 = 2 × 2 × 2). Empty when the range holds none.
 std::string name_scale_cause(const Analysis& a, double ratio, double low, double high, bool one_factor);
 
+// What the pass over the frames gathers for one check, frame by frame, in frame order; each
+// fold's add() lives in its check's file. `spectrum` is frame f's height spectrum ĥ = X/N.
+struct HermitianFold {
+  double worst_residue = 0, worst_symmetry = 0;
+  std::string residue_where = "none given", symmetry_where;
+  bool any_imaginary = false;
+  void add(const Analysis& a, std::size_t f, const reference::FieldFrame& frame,
+           std::span<const Complex> spectrum);
+};
+// Parseval through another backend than the analysis's own (OceanCheckOptions::analysis_backend):
+// each frame's height transformed by it. Through the analysis's own, the pass's spectral
+// energies serve.
+struct ParsevalFold {
+  std::shared_ptr<void> state;  // the backend, its plan and buffers (parseval.cpp)
+  double worst = 0;
+  std::string backend_name;
+  void start(const Analysis& a);
+  void add(const Analysis& a, const std::vector<double>& height);
+};
+// Each derived field against its definition from the height, every frame (derived.cpp).
+struct DerivedFold {
+  struct Judged {
+    double error = 0, bound = 0;
+  };
+  std::vector<Field> present;
+  std::vector<Judged> judged;              // judged[frame × present + field]
+  std::vector<double> kx_of, ky_of, k_of;  // per entry in FFT order, made once
+  void start(const Analysis& a);
+  // Field `i` of `present` on frame f.
+  void add(const Analysis& a, std::size_t f, std::size_t i, const reference::FieldFrame& frame,
+           std::span<const Complex> spectrum, double height_power);
+};
+
+// Everything the checks read of the frames beyond frame 0, gathered in one pass.
+struct FramePass {
+  std::vector<FrameStray> strays;                      // per frame
+  std::vector<long double> spectral_energies;          // Σ|X(k)|²/N of each frame's height
+  std::vector<long double> spatial_energies;           // Σh² of each frame, in long double (parseval)
+  std::vector<double> height_sums;                     // Σh² of each frame, in double (statistics)
+  HermitianFold hermitian;
+  ParsevalFold parseval;
+  DerivedFold derived;
+  // Per resolved wave vector, the sums of fit_two_waves over the frames in frame order (the
+  // same additions, so the fit is the one of the whole series): Σ conj(e) y, Σ e y and Σ|y|².
+  std::vector<Complex> r1, r2;
+  std::vector<double> energy;
+  // Per distinct ω of the resolved waves (group_by_omega): Σ conj(e)², e = e^(−iωt).
+  OmegaGroups groups;
+  std::vector<Complex> s;
+};
+
+// The second pass, for dispersion.residual: Σf |y_f − a e_f − b conj e_f|² per fitted wave
+// (recomputed from the first pass's sums it would cancel to 10⁻¹⁶ of the energy, far above the
+// 10⁻²⁶ a float64 surface's bound asks), and the series of the most energetic waves whose ω is
+// below the frames' Nyquist frequency, which the measured ω and the mixed-frequency diagnosis fit.
+struct DispersionPass {
+  double max_omega = 0;                   // 0.95 π / largest dt
+  std::vector<const WaveFit*> strongest;  // ≤ 24, by energy
+  std::vector<std::vector<Complex>> series;  // per strongest, per frame
+};
+
 class Analysis {
  public:
   // `travelling`: τ(k) of the case on its samples (expected_travelling_power), evaluated once by
-  // whoever runs the checks. `threads` (≥ 1) for the shared work below (wave_series, wave_fits).
-  Analysis(const OceanCase& ocean_case, const FrameSequence& frames,
-           const OceanCheckOptions& options, std::vector<double> travelling, int threads = 1)
-      : c_(ocean_case), frames_(frames), options_(options), sampling_(ocean_case.sampling()),
-        threads_(std::max(1, threads)) {
-    const Sampling given = frames.sampling();
-    if (!given.same_as(sampling_)) {
-      throw InvalidInput(fmt::format("frames are on a {} but the case says {}", given.describe(),
-                                     sampling_.describe()));
-    }
-    if (frames.frames.empty()) throw InvalidInput("no frames to check");
-    if (!frames.has(Field::height)) {
-      throw InvalidInput("the frames have no height field: every ocean check needs it");
-    }
-    require(options.alpha > 0 && options.alpha < 1, "alpha", "in (0, 1)", options.alpha);
-    count_ = sampling_.size();
-    log2n_ = std::max(1.0, std::log2(double(count_)));
-    u_ = std::max(frames.unit_roundoff, kFp64Roundoff);
-    storage_ = frames.storage_roundoff;
-    for (const auto& frame : frames.frames) times_.push_back(frame.time);
-
-    if (travelling.size() != sampling_.size()) {
-      throw InternalError("Analysis: travelling power of the wrong size");
-    }
-    shared_->tau = std::move(travelling);
-    // Two independent parts side by side (the second is an FFT): run_tasks rethrows the first
-    // part's error before the second's, so the error reported is the one a sequential run meets
-    // first.
-    detail::run_tasks(2, threads_, [&](std::size_t part) {
-      if (part == 0) {
-        shared_->mu = expected_periodogram(shared_->tau, sampling_);  // τ(k) + τ(−k): Ψ evaluated once
-        // The validity rule every command shares (reference/sampling_validity.hpp), in the
-        // number format the frames were stored in: float32 (EXR, TIFF) or coarser (PNG) unless
-        // they carry fp64's rounding.
-        reference::require_valid_sampling(
-            c_, frames.unit_roundoff > 2 * kFp64Roundoff ? reference::kFloat32 : reference::kFloat64,
-            0, "", &shared_->tau);
-      } else {
-        field_spectrum(frames.field(0, Field::height), sampling_, shared_->spectrum0, &spectral_energy0_);
-        mean_square0_ = mean_square(frames.field(0, Field::height));
-      }
-    });
-
-    const double expected_total = std::accumulate(shared_->mu.begin(), shared_->mu.end(), 0.0);
-    if (!(expected_total > 0)) {
-      throw InvalidInput("the case's spectrum puts no energy on these samples (" + c_.describe() + ")");
-    }
-    // Rounding of the stored numbers moves a resolved wave vector's periodogram by < 10⁻⁶
-    // relative — far below any sampling effect the checks test.
-    floor_ = resolution_floor(u_, mean_square0_, count_);
-    // Half storage: its rounding, at most storage_² of the energy, white over the wave vectors,
-    // moves a resolved one's periodogram by < 10⁻⁴ relative — far below what a statistical check
-    // sees even summed over 10⁶ wave vectors (relative 10⁻³). Relative to the case's energy: the
-    // frames' own (mean h²) over their level (mean h² / Σμ), so that a scale error in the frames
-    // does not move which waves are resolved.
-    floor_ = std::max(floor_, 1e4 * storage_ * storage_ * expected_total / double(count_));
-
-    const double dkx = sampling_.dkx(), dky = sampling_.dky();
-    // Room for every wave vector of the half plane at once (about half the samples): grown by
-    // doubling, the copies touched twice the memory, a fresh array each time.
-    shared_->half_plane.reserve(count_ / 2 + 1);
-    for (std::size_t e = 0; e < count_; ++e) {
-      if (!sampling_.carries_energy(e)) continue;
-      const auto [n, m] = sampling_.wave_index(e);
-      if (!in_half_plane(n, m)) continue;
-      Wave w;
-      w.index = e;
-      w.minus_index = sampling_.conjugate(e);
-      w.kx = n * dkx;
-      w.ky = m * dky;
-      w.k = std::hypot(w.kx, w.ky);
-      w.omega = c_.omega(w.k);
-      w.theta = std::atan2(w.ky, w.kx);
-      w.mu = shared_->mu[e];
-      w.tau_plus = shared_->tau[e];
-      w.tau_minus = shared_->tau[w.minus_index];
-      shared_->half_plane.push_back(w);
-    }
-    if (options.free_scale) {
-      // The maximum-likelihood scale of exponential ordinates: the mean of I/μ over the
-      // resolved half plane (Whittle), resolution judged with the model scaled to the data's
-      // energy.
-      double sum = 0;
-      int used = 0;
-      for (const Wave& w : shared_->half_plane) {
-        if (!(w.mu > 0) || w.mu * mean_square0_ / expected_total < floor_) continue;
-        sum += std::norm(shared_->spectrum0[w.index]) / w.mu;
-        ++used;
-      }
-      scale_ = used > 0 ? sum / used : 0;
-      if (!(scale_ > 0)) throw InvalidInput("free scale: the height field is identically zero");
-      for (double& v : shared_->mu) v *= scale_;
-      for (double& v : shared_->tau) v *= scale_;
-      for (Wave& w : shared_->half_plane) {
-        w.mu *= scale_;
-        w.tau_plus *= scale_;
-        w.tau_minus *= scale_;
-      }
-    }
-    shared_->resolved.reserve(shared_->half_plane.size());
-    for (const Wave& w : shared_->half_plane) {
-      if (w.mu >= floor_ && w.mu > 0) shared_->resolved.push_back(w);
-    }
-    for (std::size_t e = 0; e < count_; ++e) {
-      if (!sampling_.carries_energy(e) || shared_->mu[e] < floor_) shared_->stray.push_back(e);
-    }
-    if (shared_->resolved.empty()) {
-      const bool rounding_hides_all = std::any_of(
-          shared_->half_plane.begin(), shared_->half_plane.end(), [](const Wave& w) { return w.mu > 0; });
-      if (rounding_hides_all) throw_rounding_hides_every_wave(std::max(u_, storage_), c_);  // coarse integer frames
-      throw InvalidInput("no wave vector of the sampling carries resolvable energy under the case's "
-                         "spectrum (" + c_.describe() + ")");
-    }
-  }
+  // whoever runs the checks. `threads` (≥ 1) for the passes over the frames.
+  Analysis(const OceanCase& ocean_case, const FrameSource& frames, const OceanCheckOptions& options,
+           std::vector<double> travelling, int threads = 1);
 
   const OceanCase& ocean_case() const { return c_; }
-  const FrameSequence& frames() const { return frames_; }
+  const FrameSource& frames() const { return frames_; }
+  std::size_t frame_count() const { return times_.size(); }
   const OceanCheckOptions& options() const { return options_; }
   const Sampling& sampling() const { return sampling_; }
   std::size_t count() const { return count_; }
@@ -322,11 +226,15 @@ class Analysis {
   // The stored values' own relative error where coarser than the arithmetic (half: 2⁻¹⁰), else
   // 0 (FrameSequence::storage_roundoff).
   double storage_roundoff() const { return storage_; }
+  // The precision this analysis was made with: a file source may learn another once it has
+  // read every frame, and the analysis is then made again.
+  FramePrecision precision() const { return precision_; }
   std::size_t sample_count() const { return count_; }
   double scale() const { return scale_; }
   const std::vector<double>& times() const { return times_; }
   const std::vector<double>& mu() const { return shared_->mu; }
   const std::vector<Complex>& spectrum0() const { return shared_->spectrum0; }
+  const std::vector<double>& height0() const { return height0_; }  // frame 0's height
   double periodogram0(std::size_t e) const { return std::norm(shared_->spectrum0[e]); }
   double mean_square0() const { return mean_square0_; }
   double floor() const { return floor_; }
@@ -334,113 +242,22 @@ class Analysis {
   const std::vector<Wave>& half_plane() const { return shared_->half_plane; }
   std::string subject() const { return c_.describe(); }
 
-  // The height spectra of every frame at the resolved wave vectors, computed once.
-  // Once, whichever check asks first (the gate runs checks on one analysis concurrently).
-  // Frames are transformed on up to `threads_` threads, four at a time, each entry divided by N
-  // as field_spectrum divides it. A wave's four values then fill one 64-byte line of its series
-  // in one go: written one frame at a time, each line was fetched from memory four times.
-  const WaveSeries& wave_series() const {
-    std::call_once(series_once_, [this] {
-      const std::size_t frames = times_.size(), waves = shared_->resolved.size();
-      series_.assign(waves, frames);
-      spectral_energies_.assign(frames, spectral_energy0_);
-      frame_strays_.assign(frames, FrameStray{});
-      const double scale = 1.0 / double(count_);
-      const bool grid = !sampling_.is_lattice();
-      auto tally_stray = [&](std::size_t f, auto coefficient) {
-        FrameStray& s = frame_strays_[f];
-        for (std::size_t e : shared_->stray) {
-          const double power = std::norm(coefficient(e));
-          s.energy += power;
-          if (!(shared_->mu[e] > 0)) s.empty += power;
-          if (power > s.largest) {
-            s.largest = power;
-            s.largest_at = e;
-          }
-          if (grid) {
-            const auto [n, m] = sampling_.wave_index(e);
-            if (std::abs(n) >= sampling_.grid().nx / 4 && std::abs(m) >= sampling_.grid().ny / 4) s.corner += power;
-            if (Grid::is_nyquist(n, sampling_.grid().nx) || Grid::is_nyquist(m, sampling_.grid().ny)) s.nyquist += power;
-          }
-        }
-        s.mean_level = coefficient(0).real();
-        s.mean_square = double(spectral_energies_[f]) / double(count_);
-      };
-      constexpr std::size_t kFramesPerTask = 4;
-      detail::run_tasks((frames + kFramesPerTask - 1) / kFramesPerTask, threads_, [&](std::size_t task) {
-        const std::size_t first = task * kFramesPerTask, last = std::min(frames, first + kFramesPerTask);
-        thread_local std::vector<Complex> block;  // block[i × waves + w]: frame first + i
-        block.resize((last - first) * waves);
-        for (std::size_t f = first; f < last; ++f) {
-          Complex* values = block.data() + (f - first) * waves;
-          if (f == 0) {
-            for (std::size_t w = 0; w < waves; ++w) values[w] = shared_->spectrum0[shared_->resolved[w].index];
-            tally_stray(f, [&](std::size_t e) { return shared_->spectrum0[e]; });
-            continue;
-          }
-          const auto transform =
-              analysis_transform(frames_.field(int(f), Field::height), sampling_, &spectral_energies_[f]);
-          for (std::size_t w = 0; w < waves; ++w) values[w] = transform[shared_->resolved[w].index] * scale;
-          tally_stray(f, [&](std::size_t e) { return transform[e] * scale; });
-        }
-        for (std::size_t w = 0; w < waves; ++w) {
-          for (std::size_t f = first; f < last; ++f) series_.at(w, f) = block[(f - first) * waves + w];
-        }
-        release_analysis_scratch();
-      });
-    });
-    return series_;
-  }
-
-  // Each frame's energy where the case puts none, made with the wave series.
-  const std::vector<FrameStray>& frame_strays() const {
-    wave_series();
-    return frame_strays_;
-  }
+  // The pass over every frame, made once, whichever check asks first (the gate makes it
+  // before running checks concurrently).
+  const FramePass& pass() const;
+  // Each frame's energy where the case puts none, made by the pass.
+  const std::vector<FrameStray>& frame_strays() const { return pass().strays; }
   // The entries (FFT order) where the case puts no resolvable energy.
   const std::vector<std::size_t>& stray_entries() const { return shared_->stray; }
-
-  // Σ|X(k)|²/N of each frame's height transform X (field_spectrum's `energy`), made with the
-  // wave series.
-  const std::vector<long double>& spectral_energies() const {
-    wave_series();
-    return spectral_energies_;
-  }
+  // Σ|X(k)|²/N of each frame's height transform X (field_spectrum's `energy`).
+  const std::vector<long double>& spectral_energies() const { return pass().spectral_energies; }
 
   // a and b per resolved wave vector whose two waves are identifiable from the frame times, in
-  // the order of the resolved waves. The phases e^(−iωt_f) are made once per distinct ω
-  // (group_by_omega), the waves taken in ω order. On up to `threads_` threads.
-  const std::vector<WaveFit>& wave_fits() const {
-    std::call_once(fits_once_, [this] {
-      const auto& series = wave_series();
-      const std::vector<std::size_t> by_omega = group_by_omega(shared_->resolved).order;
-      std::vector<WaveFit> fit_of(shared_->resolved.size());
-      std::vector<char> fitted(shared_->resolved.size(), 0);
-      constexpr std::size_t kWavesPerTask = 4096;
-      detail::run_tasks((by_omega.size() + kWavesPerTask - 1) / kWavesPerTask, threads_, [&](std::size_t task) {
-        std::vector<Complex> phases;
-        double phases_omega = std::numeric_limits<double>::quiet_NaN();
-        const std::size_t end = std::min(by_omega.size(), (task + 1) * kWavesPerTask);
-        for (std::size_t i = task * kWavesPerTask; i < end; ++i) {
-          const std::size_t w = by_omega[i];
-          if (!(shared_->resolved[w].omega == phases_omega)) {
-            phases_omega = shared_->resolved[w].omega;
-            two_wave_phases(phases_omega, times_, phases);
-          }
-          WaveFit& fit = fit_of[w];
-          fit.wave = &shared_->resolved[w];
-          if (!fit_two_waves(phases, series[w], fit.a, fit.b, fit.residual)) continue;
-          for (const Complex& y : series[w]) fit.energy += std::norm(y);
-          fitted[w] = 1;
-        }
-      });
-      fits_.reserve(std::size_t(std::count(fitted.begin(), fitted.end(), char(1))));
-      for (std::size_t w = 0; w < shared_->resolved.size(); ++w) {
-        if (fitted[w]) fits_.push_back(fit_of[w]);
-      }
-    });
-    return fits_;
-  }
+  // the order of the resolved waves, from the pass's sums; `residual` is filled by the
+  // dispersion pass.
+  const std::vector<WaveFit>& wave_fits() const;
+  // The second pass (DispersionPass), made once.
+  const DispersionPass& dispersion_pass() const;
 
   // The declaration of a tabulated spectrum (model = "table") that explains frame 0 where the
   // case's own does not (table_declarations.cpp), as a clause for a failed check's reason:
@@ -458,15 +275,20 @@ class Analysis {
   int threads() const { return threads_; }
 
  private:
+  void run_pass() const;
+  void run_dispersion_pass() const;
+
   const OceanCase& c_;
-  const FrameSequence& frames_;
+  const FrameSource& frames_;
   OceanCheckOptions options_;
   Sampling sampling_;
+  FramePrecision precision_;
   std::size_t count_ = 0;
   double log2n_ = 1, u_ = kFp64Roundoff, storage_ = 0, scale_ = 1, floor_ = 0, mean_square0_ = 0;
   long double spectral_energy0_ = 0;
   int threads_ = 1;
   std::vector<double> times_;
+  std::vector<double> height0_;
   struct Shared {
     std::vector<double> mu, tau;
     std::vector<Complex> spectrum0;
@@ -474,13 +296,12 @@ class Analysis {
     std::vector<std::size_t> stray;
   };
   std::shared_ptr<Shared> shared_ = std::make_shared<Shared>();
-  mutable WaveSeries series_;
-  mutable std::vector<long double> spectral_energies_;
-  mutable std::vector<FrameStray> frame_strays_;
+  mutable FramePass pass_;
+  mutable DispersionPass dispersion_;
   mutable std::vector<WaveFit> fits_;
   mutable std::string misdeclared_table_;
   mutable MeasuredLevel level_;
-  mutable std::once_flag series_once_, fits_once_, table_once_, level_once_;
+  mutable std::once_flag pass_once_, fits_once_, dispersion_once_, table_once_, level_once_;
 };
 
 // A failed check's explanation: the misdeclared table's reading where one explains the

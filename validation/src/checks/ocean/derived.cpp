@@ -33,8 +33,11 @@ std::string explain_derived(const Analysis& a, Field field, std::size_t frame, d
   const std::string other_name =
       reference::field_name(displacement ? (along_x ? Field::disp_y : Field::disp_x)
                                          : (along_x ? Field::slope_y : Field::slope_x));
-  const auto got = field_spectrum(a.frames().field(int(frame), field), g);
-  const auto height = field_spectrum(a.frames().field(int(frame), Field::height), g);
+  // The frame read again: only a failing field's worst frame is explained.
+  const auto frame_fields = a.frames().frame(frame, [&](int, Field f) { return f == field || f == Field::height; });
+  const auto& field_values = frame_fields->fields.at(field);
+  const auto got = field_spectrum(field_values, g);
+  const auto height = field_spectrum(frame_fields->fields.at(Field::height), g);
   const bool grid = !g.is_lattice();
   double power = 0;
   StrayEnergy stray;
@@ -131,7 +134,6 @@ std::string explain_derived(const Analysis& a, Field field, std::size_t frame, d
       stretch[e] = -choppiness * component * component / k * height[e];
     }
     const auto s = field_from_spectrum(slope, g), d = field_from_spectrum(stretch, g);
-    const auto& field_values = a.frames().field(int(frame), field);
     for (bool absolute : {true, false}) {
       double tt = 0, tg = 0, gg = 0;
       std::vector<double> t(s.size());
@@ -222,136 +224,154 @@ std::string explain_derived(const Analysis& a, Field field, std::size_t frame, d
 // rounding, white with variance ≤ u² mean(h²), pushed through the field's multiplier, plus the
 // field's own rounding; 10× that. λ = 0 declares no displacement: those fields must be zero, and
 // their error is measured against what λ = 1 would put there.
-Results check_derived(const Analysis& a, OceanCheckReport& report) {
-  const Sampling& g = a.sampling();
-  const double lambda = a.ocean_case().choppiness;
-  const std::vector<Field> derived = {Field::slope_x, Field::slope_y, Field::disp_x, Field::disp_y,
-                                      Field::jacobian};
-  std::vector<Field> present;
-  for (Field f : derived) {
+namespace {
+
+// Multipliers per wave vector in FFT order, of (kx, ky) and |k| = hypot(kx, ky), for a
+// displacement factor `l`.
+Complex multiplier(Field field, double l, double kx, double ky, double k) {
+  if (k == 0) return 0;
+  switch (field) {
+    case Field::slope_x: return {0, kx};
+    case Field::slope_y: return {0, ky};
+    case Field::disp_x: return {0, l * kx / k};
+    case Field::disp_y: return {0, l * ky / k};
+    default: return 0;
+  }
+}
+
+}  // namespace
+
+void DerivedFold::start(const Analysis& a) {
+  for (Field f : {Field::slope_x, Field::slope_y, Field::disp_x, Field::disp_y, Field::jacobian}) {
     if (a.frames().has(f)) present.push_back(f);
   }
-  if (present.empty()) {
-    report.skipped.push_back({"derived", SkipReason::no_field, "no slope, displacement or Jacobian field given"});
-    return {};
-  }
-  // Multipliers per wave vector in FFT order, of (kx, ky) and |k| = hypot(kx, ky), for a
-  // displacement factor `l`.
-  auto multiplier = [](Field field, double l, double kx, double ky, double k) -> Complex {
-    if (k == 0) return 0;
-    switch (field) {
-      case Field::slope_x: return {0, kx};
-      case Field::slope_y: return {0, ky};
-      case Field::disp_x: return {0, l * kx / k};
-      case Field::disp_y: return {0, l * ky / k};
-      default: return 0;
-    }
-  };
+  judged.assign(a.frame_count() * present.size(), Judged{});
+  if (present.empty()) return;
   // kx, ky and |k| per entry, made once for the up to 14 derivations of each frame (hypot in
   // each of their loops was a third of this check's time).
+  const Sampling& g = a.sampling();
   const std::size_t count = a.count();
-  std::vector<double> kx_of(count), ky_of(count), k_of(count);
+  kx_of.resize(count);
+  ky_of.resize(count);
+  k_of.resize(count);
   for (std::size_t e = 0; e < count; ++e) {
     const auto [nn, mm] = g.wave_index(e);
     kx_of[e] = nn * g.dkx();
     ky_of[e] = mm * g.dky();
     k_of[e] = std::hypot(kx_of[e], ky_of[e]);
   }
+}
+
+// Field `i` of `present` on frame f, from the frame's height spectrum; the pass calls it for
+// each field of each frame, the fields of one frame side by side.
+void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t i, const reference::FieldFrame& values,
+                      std::span<const Complex> spectrum, double h_power) {
+  const Sampling& g = a.sampling();
+  const double lambda = a.ocean_case().choppiness;
   const double u = a.unit_roundoff();
-  const std::size_t frames = a.frames().frames.size();
-  struct Judged {
-    double error = 0, bound = 0;
-  };
-  // judged[frame × fields + field]
-  std::vector<Judged> judged(frames * present.size());
-  detail::run_tasks(frames, a.threads(), [&](std::size_t frame) {
-    const auto& h = a.frames().field(int(frame), Field::height);
-    const auto spectrum = frame == 0 ? a.spectrum0() : field_spectrum(h, g);
-    const double h_power = mean_square(h);
-    auto derive = [&](const auto& m, double& mean_m2) {
-      std::vector<Complex> s(spectrum.size());
-      mean_m2 = 0;
-      for (std::size_t e = 0; e < spectrum.size(); ++e) {
-        const Complex mult = g.carries_energy(e) ? m(kx_of[e], ky_of[e], k_of[e]) : 0.0;
-        s[e] = mult * spectrum[e];
-        mean_m2 += std::norm(mult);
-      }
-      mean_m2 /= double(spectrum.size());
-      return field_from_spectrum(s, g);
-    };
-    auto jacobian_minus_one = [&](double l, double& mean_m2, double& products) {
-      double m_xx = 0, m_yy = 0, m_xy = 0;
-      const auto dxx = derive([&](double kx, double, double k) { return Complex(-l * kx * kx / k); }, m_xx);
-      const auto dyy = derive([&](double, double ky, double k) { return Complex(-l * ky * ky / k); }, m_yy);
-      const auto dxy = derive([&](double kx, double ky, double k) { return Complex(-l * kx * ky / k); }, m_xy);
-      std::vector<double> out(dxx.size());
-      products = 0;
-      // The stored height's rounding reaches J through δJ = (1 + b) δa + (1 + a) δb − 2c δc: each
-      // δ is the height's rounding through its multiplier (m_xx, m_yy, m_xy), weighted by the
-      // other factor — 1 while λ∂D ≪ 1, but λ∂D itself where it is large (a λ of 10¹¹ drawn by
-      // the property test made the linear weights 10⁵ times too small).
-      double weight_a = 0, weight_b = 0, weight_c = 0;
-      for (std::size_t p = 0; p < dxx.size(); ++p) {
-        const double product = (1 + dxx[p]) * (1 + dyy[p]), square = dxy[p] * dxy[p];
-        out[p] = product - square - 1;  // J − 1
-        // J = (1 + a)(1 + b) − c² rounds relative to its two products, which cancel where
-        // the waves are nearly collinear (a narrow spreading: ab ≈ c²) and λ∂D ≫ 1.
-        products += product * product + square * square;
-        weight_a += std::pow(1 + std::abs(dyy[p]), 2);
-        weight_b += std::pow(1 + std::abs(dxx[p]), 2);
-        weight_c += square;
-      }
-      const double n = double(dxx.size());
-      products /= n;
-      mean_m2 = m_xx * weight_a / n + m_yy * weight_b / n + m_xy * (2 + 4 * weight_c / n);
-      return out;
-    };
-    for (std::size_t i = 0; i < present.size(); ++i) {
-      const Field field = present[i];
-      std::vector<double> got = a.frames().field(int(frame), field);
-      double mean_m2 = 0, jacobian_products = 0;
-      std::vector<double> expected;
-      if (field == Field::jacobian) {
-        expected = jacobian_minus_one(lambda, mean_m2, jacobian_products);
-        for (double& v : got) v -= 1;
-      } else {
-        expected = derive([&](double kx, double ky, double k) { return multiplier(field, lambda, kx, ky, k); }, mean_m2);
-      }
-      // What measures the error: the field's expected rms, or, where λ = 0 makes the
-      // displacements (and J − 1) zero, what λ = 1 would put there.
-      double expected_power = mean_square(expected);
-      if (lambda == 0 && field != Field::slope_x && field != Field::slope_y) {
-        double unit_m2 = 0, unit_products = 0;
-        expected_power = mean_square(
-            field == Field::jacobian
-                ? jacobian_minus_one(1.0, unit_m2, unit_products)
-                : derive([&](double kx, double ky, double k) { return multiplier(field, 1.0, kx, ky, k); }, unit_m2));
-      }
-      std::vector<double> difference(expected.size());
-      for (std::size_t p = 0; p < expected.size(); ++p) difference[p] = got[p] - expected[p];
-      const double scale = std::sqrt(std::max(expected_power, 1e-300));
-      const double error = std::sqrt(mean_square(difference)) / scale;
-      const double own = field == Field::jacobian ? jacobian_products : mean_square(expected);
-      // Rounding, in the stored numbers' unit roundoff u: of the stored height, carried into
-      // the derived field by its multiplier (h_power·mean |m|²); of the stored field itself
-      // (own); and of the engine's own inverse transform of this field, ≈ u log2 N relative in
-      // L2 (the accuracy bound of every FFT, docs/transforms.md) — which a J made of three
-      // transformed λ∂D terms shows first (the command line's property test).
-      // (For J, each factor of its two products carries that error relative to itself.)
-      const double transform = a.log2n() * a.log2n() *
-                               (field == Field::jacobian ? std::max(mean_square(expected), jacobian_products)
-                                                         : mean_square(expected));
-      const double rounding = std::sqrt(u * u * (h_power * mean_m2 + own + transform)) / scale;
-      // Half storage: each stored value (the height's and the field's own) within s of itself,
-      // s = 2⁻¹⁰; the height's error, white, carried by the multiplier. Its energy is bounded,
-      // not estimated, so 3× (not 10×) covers the two adding in phase: an error 10× s still fails.
-      const double s = a.storage_roundoff();
-      const double storage = std::sqrt(s * s * (h_power * mean_m2 + own)) / scale;
-      judged[frame * present.size() + i] = {
-          error, 10 * rounding + 3 * storage + rounding_budget(kCompoundRounding, kFp64Roundoff, a.log2n())};
+  auto derive = [&](const auto& m, double& mean_m2) {
+    std::vector<Complex> s(spectrum.size());
+    mean_m2 = 0;
+    for (std::size_t e = 0; e < spectrum.size(); ++e) {
+      const Complex mult = g.carries_energy(e) ? m(kx_of[e], ky_of[e], k_of[e]) : 0.0;
+      s[e] = mult * spectrum[e];
+      mean_m2 += std::norm(mult);
     }
-    release_analysis_scratch();
-  });
+    mean_m2 /= double(spectrum.size());
+    return field_from_spectrum(s, g);
+  };
+  auto jacobian_minus_one = [&](double l, double& mean_m2, double& products) {
+    double m_xx = 0, m_yy = 0, m_xy = 0;
+    const auto dxx = derive([&](double kx, double, double k) { return Complex(-l * kx * kx / k); }, m_xx);
+    const auto dyy = derive([&](double, double ky, double k) { return Complex(-l * ky * ky / k); }, m_yy);
+    const auto dxy = derive([&](double kx, double ky, double k) { return Complex(-l * kx * ky / k); }, m_xy);
+    std::vector<double> out(dxx.size());
+    products = 0;
+    // The stored height's rounding reaches J through δJ = (1 + b) δa + (1 + a) δb − 2c δc: each
+    // δ is the height's rounding through its multiplier (m_xx, m_yy, m_xy), weighted by the
+    // other factor — 1 while λ∂D ≪ 1, but λ∂D itself where it is large (a λ of 10¹¹ drawn by
+    // the property test made the linear weights 10⁵ times too small).
+    double weight_a = 0, weight_b = 0, weight_c = 0;
+    for (std::size_t p = 0; p < dxx.size(); ++p) {
+      const double product = (1 + dxx[p]) * (1 + dyy[p]), square = dxy[p] * dxy[p];
+      out[p] = product - square - 1;  // J − 1
+      // J = (1 + a)(1 + b) − c² rounds relative to its two products, which cancel where
+      // the waves are nearly collinear (a narrow spreading: ab ≈ c²) and λ∂D ≫ 1.
+      products += product * product + square * square;
+      weight_a += std::pow(1 + std::abs(dyy[p]), 2);
+      weight_b += std::pow(1 + std::abs(dxx[p]), 2);
+      weight_c += square;
+    }
+    const double n = double(dxx.size());
+    products /= n;
+    mean_m2 = m_xx * weight_a / n + m_yy * weight_b / n + m_xy * (2 + 4 * weight_c / n);
+    return out;
+  };
+  const Field field = present[i];
+  const std::vector<double>& got = values.fields.at(field);
+  const bool jacobian = field == Field::jacobian;
+  double mean_m2 = 0, jacobian_products = 0;
+  std::vector<double> expected;
+  if (jacobian) {
+    expected = jacobian_minus_one(lambda, mean_m2, jacobian_products);
+  } else {
+    expected = derive([&](double kx, double ky, double k) { return multiplier(field, lambda, kx, ky, k); }, mean_m2);
+  }
+  // What measures the error: the field's expected rms, or, where λ = 0 makes the
+  // displacements (and J − 1) zero, what λ = 1 would put there.
+  double expected_power = mean_square(expected);
+  if (lambda == 0 && field != Field::slope_x && field != Field::slope_y) {
+    double unit_m2 = 0, unit_products = 0;
+    expected_power = mean_square(
+        jacobian ? jacobian_minus_one(1.0, unit_m2, unit_products)
+                 : derive([&](double kx, double ky, double k) { return multiplier(field, 1.0, kx, ky, k); }, unit_m2));
+  }
+  // mean_square of the difference got − expected (J − 1 for the Jacobian), summed as it sums.
+  double difference = 0;
+  for (std::size_t p = 0; p < expected.size(); ++p) {
+    const double d = (jacobian ? got[p] - 1 : got[p]) - expected[p];
+    difference += d * d;
+  }
+  difference /= double(expected.size());
+  const double scale = std::sqrt(std::max(expected_power, 1e-300));
+  const double error = std::sqrt(difference) / scale;
+  const double own = jacobian ? jacobian_products : mean_square(expected);
+  // Rounding, in the stored numbers' unit roundoff u: of the stored height, carried into
+  // the derived field by its multiplier (h_power·mean |m|²); of the stored field itself
+  // (own); and of the engine's own inverse transform of this field, ≈ u log2 N relative in
+  // L2 (the accuracy bound of every FFT, docs/transforms.md) — which a J made of three
+  // transformed λ∂D terms shows first (the command line's property test).
+  // (For J, each factor of its two products carries that error relative to itself.)
+  const double transform = a.log2n() * a.log2n() *
+                           (jacobian ? std::max(mean_square(expected), jacobian_products) : mean_square(expected));
+  const double rounding = std::sqrt(u * u * (h_power * mean_m2 + own + transform)) / scale;
+  // Half storage: each stored value (the height's and the field's own) within s of itself,
+  // s = 2⁻¹⁰; the height's error, white, carried by the multiplier. Its energy is bounded,
+  // not estimated, so 3× (not 10×) covers the two adding in phase: an error 10× s still fails.
+  const double s = a.storage_roundoff();
+  const double storage = std::sqrt(s * s * (h_power * mean_m2 + own)) / scale;
+  judged[frame * present.size() + i] = {
+      error, 10 * rounding + 3 * storage + rounding_budget(kCompoundRounding, kFp64Roundoff, a.log2n())};
+}
+
+// Each derived field against its definition applied to the height field (conventions
+// §Derived fields), on every frame: a fault that lives in some frames only (a field written
+// from another frame, a sway that starts late) fails the check like one in all of them; the
+// frame judged worst is the one reported and explained. Rounding bound: the stored height's
+// rounding, white with variance ≤ u² mean(h²), pushed through the field's multiplier, plus the
+// field's own rounding; 10× that. λ = 0 declares no displacement: those fields must be zero, and
+// their error is measured against what λ = 1 would put there.
+Results check_derived(const Analysis& a, OceanCheckReport& report) {
+  const double lambda = a.ocean_case().choppiness;
+  const DerivedFold& fold = a.pass().derived;
+  const std::vector<Field>& present = fold.present;
+  if (present.empty()) {
+    report.skipped.push_back({"derived", SkipReason::no_field, "no slope, displacement or Jacobian field given"});
+    return {};
+  }
+  const std::size_t frames = a.frame_count();
+  const auto& judged = fold.judged;
+  using Judged = DerivedFold::Judged;
   Results out;
   for (std::size_t i = 0; i < present.size(); ++i) {
     const Field field = present[i];

@@ -163,17 +163,19 @@ double two_frequency_residual(double omega1, double omega2, const std::vector<do
 //      refinement), explaining them to 10⁻³ and both carrying ≥ 1 % of the energy, are reported
 //      as ratios to ω(k).
 // Empty when none applies.
-std::string explain_mixed_frequencies(const Analysis& a, const std::vector<const WaveFit*>& strongest,
-                                      double max_omega) {
-  const auto& series = a.wave_series();
+std::string explain_mixed_frequencies(const Analysis& a) {
+  const DispersionPass& d = a.dispersion_pass();
+  const std::vector<const WaveFit*>& strongest = d.strongest;
+  const double max_omega = d.max_omega;
   const auto& times = a.times();
   if (strongest.empty()) return "";
   auto median = [](std::vector<double> v) {
     std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
     return v[v.size() / 2];
   };
+  // The series of strongest[i] is d.series[i].
   auto series_of = [&](const WaveFit* f) -> std::span<const Complex> {
-    return series[std::size_t(f->wave - a.waves().data())];
+    return d.series[std::size_t(std::find(strongest.begin(), strongest.end(), f) - strongest.begin())];
   };
   // 1. The offsets engines make: exact (10⁻⁶) where a single free ω explains only
   // approximately over a short record.
@@ -292,6 +294,8 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
                              "frame times (2ω dt ≈ 0 mod 2π everywhere)"});
     return {};
   }
+  // The second pass over the frames fills each fit's residual.
+  const DispersionPass& pass = a.dispersion_pass();
   double residual = 0, energy = 0;
   for (const WaveFit& f : fits) {
     residual += f.residual;
@@ -316,18 +320,9 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
   Results out;
 
   // ω per wave vector, for the most energetic wave vectors whose ω is below the frames'
-  // Nyquist frequency π/dt (above it ω aliases).
-  double dt = 0;
-  for (std::size_t f = 1; f < a.times().size(); ++f) dt = std::max(dt, a.times()[f] - a.times()[f - 1]);
-  const double max_omega = 0.95 * kPi / dt;
-  std::vector<const WaveFit*> strongest;
-  for (const WaveFit& f : fits) {
-    if (f.wave->omega > 0 && 3 * f.wave->omega / 2 < max_omega) strongest.push_back(&f);
-  }
-  std::sort(strongest.begin(), strongest.end(),
-            [](const WaveFit* x, const WaveFit* y) { return x->energy > y->energy; });
-  if (strongest.size() > 24) strongest.resize(24);
-  const auto& series = a.wave_series();
+  // Nyquist frequency π/dt (above it ω aliases): their series, from the dispersion pass.
+  const std::vector<const WaveFit*>& strongest = pass.strongest;
+  const double max_omega = pass.max_omega;
   std::vector<std::pair<double, double>> ratios;  // (ω measured / ω case, energy)
   std::vector<std::pair<double, double>> rounding;  // (what rounding can move that ratio by, energy)
   std::vector<MeasuredOmega> measured;
@@ -342,9 +337,9 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
   const double span = a.times().back() - a.times().front();
   const double stored = std::max(a.unit_roundoff(), a.storage_roundoff());
   const double noise = stored * stored * a.mean_square0() / double(a.sample_count());
-  for (const WaveFit* f : strongest) {
-    const std::size_t w = std::size_t(f->wave - a.waves().data());
-    const double omega = best_omega(f->wave->omega, max_omega, a.times(), series[w]);
+  for (std::size_t i = 0; i < strongest.size(); ++i) {
+    const WaveFit* f = strongest[i];
+    const double omega = best_omega(f->wave->omega, max_omega, a.times(), pass.series[i]);
     ratios.push_back({omega / f->wave->omega, f->energy});
     const double power = f->energy / frames;
     rounding.push_back({power > 0 ? 6 * std::sqrt(noise / (2 * power)) * std::sqrt(12 / frames) /
@@ -357,7 +352,7 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
   // More than 1 % left by one frequency pair: look for two.
   std::string mixed;
   if (fraction > std::max(bound, 1e-2) && a.times().size() >= 6) {
-    mixed = explain_mixed_frequencies(a, strongest, max_omega);
+    mixed = explain_mixed_frequencies(a);
   }
   std::string diagnosis;
   if (!mixed.empty()) {

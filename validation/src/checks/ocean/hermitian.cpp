@@ -6,40 +6,42 @@ namespace swell::validation::ocean_analysis {
 // A real field's spectrum is Hermitian to rounding whatever the engine did; what an engine can
 // get wrong shows in the imaginary part of a complex synthesis, when it hands that over. The
 // imaginary residue of a right synthesis is the transform's rounding, ≲ u log2 N of the field.
-Results check_hermitian(const Analysis& a, OceanCheckReport&) {
-  Results out;
-  double worst_residue = 0, worst_symmetry = 0;
-  std::string residue_where = "none given", symmetry_where;
-  bool any_imaginary = false;
-  for (std::size_t f = 0; f < a.frames().frames.size(); ++f) {
-    const auto& frame = a.frames().frames[f];
-    for (const auto& [field, values] : frame.fields) {
-      const auto imaginary = frame.imaginary.find(field);
-      if (imaginary != frame.imaginary.end()) {
-        any_imaginary = true;
-        const double residue =
-            std::sqrt(mean_square(imaginary->second) / std::max(mean_square(values), 1e-300));
-        if (residue >= worst_residue) {
-          worst_residue = residue;
-          residue_where = fmt::format("{} frame {}", reference::field_name(field), f);
-        }
-      }
-    }
-    if (f == 0 || f + 1 == a.frames().frames.size()) {
-      const auto& spectrum = f == 0 ? a.spectrum0()
-                                    : field_spectrum(a.frames().field(int(f), Field::height), a.sampling());
-      double largest = 0, asymmetry = 0;
-      for (const Wave& w : a.half_plane()) {
-        largest = std::max(largest, std::abs(spectrum[w.index]));
-        asymmetry = std::max(asymmetry, std::abs(spectrum[w.index] - std::conj(spectrum[w.minus_index])));
-      }
-      const double relative = asymmetry / std::max(largest, 1e-300);
-      if (relative >= worst_symmetry) {
-        worst_symmetry = relative;
-        symmetry_where = fmt::format("height frame {}", f);
+void HermitianFold::add(const Analysis& a, std::size_t f, const reference::FieldFrame& frame,
+                        std::span<const Complex> spectrum) {
+  for (const auto& [field, values] : frame.fields) {
+    const auto imaginary = frame.imaginary.find(field);
+    if (imaginary != frame.imaginary.end()) {
+      any_imaginary = true;
+      const double residue =
+          std::sqrt(mean_square(imaginary->second) / std::max(mean_square(values), 1e-300));
+      if (residue >= worst_residue) {
+        worst_residue = residue;
+        residue_where = fmt::format("{} frame {}", reference::field_name(field), f);
       }
     }
   }
+  // The first frame and the last: the engine's sign conventions do not change between them.
+  if (f == 0 || f + 1 == a.frame_count()) {
+    double largest = 0, asymmetry = 0;
+    for (const Wave& w : a.half_plane()) {
+      largest = std::max(largest, std::abs(spectrum[w.index]));
+      asymmetry = std::max(asymmetry, std::abs(spectrum[w.index] - std::conj(spectrum[w.minus_index])));
+    }
+    const double relative = asymmetry / std::max(largest, 1e-300);
+    if (relative >= worst_symmetry) {
+      worst_symmetry = relative;
+      symmetry_where = fmt::format("height frame {}", f);
+    }
+  }
+}
+
+Results check_hermitian(const Analysis& a, OceanCheckReport&) {
+  Results out;
+  const HermitianFold& fold = a.pass().hermitian;
+  const double worst_residue = fold.worst_residue, worst_symmetry = fold.worst_symmetry;
+  const std::string& residue_where = fold.residue_where;
+  const std::string& symmetry_where = fold.symmetry_where;
+  const bool any_imaginary = fold.any_imaginary;
   const double symmetry_bound = rounding_budget(kTransformRounding, kFp64Roundoff, a.log2n());
   out.push_back(bounded_check("hermitian.symmetry", a.subject(), worst_symmetry, symmetry_bound,
                         fmt::format("max|ĥ(k) − conj ĥ(−k)| / max|ĥ| ≤ {:.1e}", symmetry_bound),

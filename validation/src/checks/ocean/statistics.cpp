@@ -10,7 +10,7 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   Results out;
   const bool several_frames = a.times().size() >= 2;
   const double alpha = a.options().alpha / (several_frames ? 4 : 3);
-  const auto& h = a.frames().field(0, Field::height);
+  const auto& h = a.height0();
   const double n = double(a.count());
 
   // Sample skewness and kurtosis of a Gaussian field on the torus: with covariance
@@ -135,7 +135,7 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   };
   std::vector<Complex> first_phase;  // e^(−2iωt0) per distinct ω
   phases_at(times[0], first_phase);
-  const std::vector<double> sums = sums_of_squares<double>(heights(a.frames()));
+  const std::vector<double>& sums = a.pass().height_sums;  // Σh² per frame
   // m0(t) − m0(t0) = Σ over the half plane of 4 Re(a b (e^(−2iωt) − e^(−2iωt0))), a = h̃0(k) and
   // b = h̃0(−k) independent complex Gaussians of powers τ+ and τ−: each term is exactly
   // w (E1 − E2), E Exp(1) independent, w = 2 √(τ+ τ−) |e^(−2iωt) − e^(−2iωt0)| (Re x y of

@@ -30,6 +30,7 @@
 
 #include "swell/reference/fields.hpp"
 #include "swell/reference/ocean_case.hpp"
+#include "swell/validation/io/frame_source.hpp"
 #include "swell/validation/results/check_result.hpp"
 
 namespace swell::validation {
@@ -86,6 +87,14 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const reference::OceanCase&
                                                      std::vector<double> travelling_power,
                                                      int threads);
 
+// The same on frames streamed from a source (io/frame_source.hpp): what the gate runs on a
+// case's files, whose memory is then a few frames', whatever their number.
+std::vector<OceanCheckReport> run_ocean_check_groups(const reference::OceanCase& ocean_case,
+                                                     const FrameSource& frames,
+                                                     const OceanCheckOptions& options,
+                                                     const std::vector<OceanCheckGroup>& groups,
+                                                     std::vector<double> travelling_power,
+                                                     int threads);
 // Runs the checks named (all when empty) on `frames`, which must match the case's grid.
 // Throws InvalidInput for an unknown check name, mismatched grids or frames without height.
 OceanCheckReport run_ocean_checks(const reference::OceanCase& ocean_case,

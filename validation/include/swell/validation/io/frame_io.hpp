@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -90,6 +91,69 @@ using FieldFilter = std::function<bool(int frame, reference::Field field)>;
 reference::FrameSequence read_frames(const CaseFile& case_file,
                                      const std::string& pattern_override = "",
                                      const FieldFilter& keep = {}, int threads = 0);
+
+// The precision frames were stored in (reference::FrameSequence's unit_roundoff and
+// storage_roundoff), from the largest unit roundoff `stored` of their files and whether every
+// value of every frame is a half (`all_halves`): declared by [input] precision (`declared`,
+// checked against what was stored; messages begin with `origin`) or detected — float frames
+// whose every value is a half were stored in half (a GPU texture widened on the way out). Half
+// frames are taken as computed in float32 (2⁻²⁴) and stored to within one ulp (2⁻¹⁰;
+// docs/conventions.md §storage precision).
+struct FramePrecision {
+  double unit_roundoff = 0x1p-53;
+  double storage_roundoff = 0;
+  bool operator==(const FramePrecision&) const = default;
+};
+FramePrecision storage_precision(double stored, bool all_halves, const std::string& declared,
+                                 const std::string& origin);
+bool all_half_values(const reference::FieldFrame& frame);  // every value, imaginary parts included
+
+namespace detail {
+struct PixelScratch;
+}
+// A reading thread's decoding buffers, kept from frame to frame.
+class FrameReadScratch {
+ public:
+  FrameReadScratch();
+  ~FrameReadScratch();
+  detail::PixelScratch& pixels() { return *pixels_; }
+
+ private:
+  std::unique_ptr<detail::PixelScratch> pixels_;
+};
+
+// The frames a case file names, read one at a time (read_frames reads them all; the gate streams
+// them through io/frame_source.hpp). Made, it has checked the case's [input] and the pattern;
+// read() checks each frame's files (sizes, channels, finite values) as read_frames does and
+// returns their unit roundoff. `threads_per_file` bounds the threads decoding within one file.
+class FrameFileReader {
+ public:
+  FrameFileReader(const CaseFile& case_file, const std::string& pattern_override = "",
+                  int threads_per_file = 1);
+  ~FrameFileReader();
+  int frames() const;
+  const std::string& origin() const;  // "[input] files" or "--input", for messages
+  const reference::OceanCase& ocean() const { return ocean_; }
+  const InputSpec& input() const { return input_; }
+  reference::FrameSequence empty_sequence() const;  // the case's samples, no frames
+  // Frame f into `frame` (its fields replaced); fields `keep` rejects are read, checked and
+  // dropped. Safe to call from several threads, each with its own scratch.
+  double read(int f, reference::FieldFrame& frame, FrameReadScratch& scratch,
+              const FieldFilter& keep = {}) const;
+  // Throws InvalidInput when a frame beyond the case's last is on disk.
+  void require_no_extra_frame() const;
+  // storage_precision with the case's declaration; needs_half_scan: whether all_halves matters.
+  FramePrecision precision(double stored, bool all_halves) const;
+  bool needs_half_scan(double stored) const;
+
+ private:
+  struct Layout;
+  std::filesystem::path file_of(int f, reference::Field field) const;
+  reference::OceanCase ocean_;
+  InputSpec input_;
+  std::shared_ptr<Layout> layout_;
+  int threads_per_file_ = 1;
+};
 
 // Frames handed over in memory (the Python module): arrays[field][frame], each as the .npy file
 // of that field and frame would hold it (float16, float32, float64, complex64 or complex128;

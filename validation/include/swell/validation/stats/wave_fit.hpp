@@ -25,4 +25,11 @@ bool fit_two_waves(std::span<const std::complex<double>> phases,
                    std::span<const std::complex<double>> y, std::complex<double>& a,
                    std::complex<double>& b, double& residual);
 
+// The solution from the sums the fit makes over the frames (S = Σ conj(e)², r1 = Σ conj(e) y,
+// r2 = Σ e y over `frames` frames, each summed in frame order): what fit_two_waves computes,
+// bit for bit, for a caller that sums frame by frame (the gate's streaming pass). False when
+// a and b are not identifiable.
+bool solve_two_waves(double frames, std::complex<double> s, std::complex<double> r1,
+                     std::complex<double> r2, std::complex<double>& a, std::complex<double>& b);
+
 }  // namespace swell::validation
