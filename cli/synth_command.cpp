@@ -353,6 +353,28 @@ int run_synth(const SynthOptions& o) {
   }
   w.fields.assign(reference::kAllFields.begin(), reference::kAllFields.end());
   if (w.png) w.fields = {Field::height, Field::disp_x, Field::disp_y};
+  if (!o.fields.empty()) {
+    // In swell's field order, whatever order they are named in; every gate needs the height.
+    std::vector<Field> named;
+    for (const auto& name : o.fields) {
+      const Field field = reference::field_from_name(name);  // names the valid ones
+      if (std::find(named.begin(), named.end(), field) != named.end()) {
+        throw InvalidInput(fmt::format("--fields names {} twice", reference::field_name(field)));
+      }
+      named.push_back(field);
+    }
+    if (std::find(named.begin(), named.end(), Field::height) == named.end()) {
+      throw InvalidInput("--fields must include height (h): every ocean check reads it");
+    }
+    if (w.png && named.size() > 4) {
+      throw InvalidInput(fmt::format("--fields names {} fields; a PNG holds at most 4 (R, G, B, A)",
+                                     named.size()));
+    }
+    w.fields.clear();
+    for (Field field : reference::kAllFields) {
+      if (std::find(named.begin(), named.end(), field) != named.end()) w.fields.push_back(field);
+    }
+  }
   w.quiet = o.json == "-";
 
   const auto start = std::chrono::steady_clock::now();
@@ -655,6 +677,11 @@ Action add_synth_command(CLI::App& app) {
   app.add_option("--value-range", o->value_range,
                  "png: the values pixel 0 and pixel 65535 stand for, LO,HI [m]; a value outside "
                  "is an error, never clipped")
+      ->delimiter(',');
+  app.add_option("--fields", o->fields,
+                 "the fields stored, e.g. h,dx,dy (field or channel names: height h, slope_x sx, "
+                 "slope_y sy, disp_x dx, disp_y dy, jacobian J; default all six, or h,dx,dy for "
+                 "png); height is required")
       ->delimiter(',');
   app.add_option("--sum", o->sum,
                  "cascade sets: write the summed surface under DIR/sum (auto: when the patch "

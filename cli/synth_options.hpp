@@ -35,6 +35,7 @@ struct SynthOptions {
   std::string precision = "fp32";
   std::string format = "exr";
   std::vector<double> value_range;  // png: the metres pixel 0 and pixel 65535 stand for
+  std::vector<std::string> fields;  // --fields: the fields stored (field or channel names)
   std::string out;
   std::string json;
   std::string sum = "auto";  // cascade sets: write the summed surface (yes | no | auto)

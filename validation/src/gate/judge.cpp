@@ -61,6 +61,7 @@ GateReport judge(const CaseFile& case_file, const FrameSource& frames,
   // and its wisdom then changed the estimate plans of later gates in the process (FFTW uses
   // any wisdom it has for an estimate plan). So the gate's report is the same on every run.
   check_options.analysis_backend = kAnalysisBackend;
+  check_options.progress = options.progress;
   options.report_progress(fmt::format("judging {} frame{} of {}×{}…", report.frames,
                                        report.frames == 1 ? "" : "s", report.nx, report.ny));
 

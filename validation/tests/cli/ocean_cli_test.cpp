@@ -177,6 +177,39 @@ TEST_F(OceanCli, SynthWritesSixteenBitPngThatTheGatePasses) {
   EXPECT_EQ(gate.exit_code, 0) << gate.output;
 }
 
+// --fields stores the fields named (a film pipeline's h, dx, dy), in swell's order whatever
+// order they are named in; the case reads them back and the gate passes them. Without the
+// height, or with an unknown name, it is bad input.
+TEST_F(OceanCli, SynthStoresTheFieldsNamed) {
+  const CliRun run = swell("synth --model jonswap --hs 2.5 --tp 7 --impl fftw --n 64 --length 300 "
+                           "--frames 4 --dt 0.5 --seed 5 --format npy --fields disp_y,h,dx --out " +
+                           path("three"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(fs::exists(dir_ / "three" / "frame_0003_dy.npy"));
+  EXPECT_FALSE(fs::exists(dir_ / "three" / "frame_0000_sx.npy"));
+  EXPECT_FALSE(fs::exists(dir_ / "three" / "frame_0000_J.npy"));
+  const auto c = swell::validation::read_case_file(dir_ / "three" / "case.toml");
+  EXPECT_EQ(c.input.channels, (std::map<Field, std::string>{
+                                  {Field::height, "h"}, {Field::disp_x, "dx"}, {Field::disp_y, "dy"}}));
+  const CliRun gate = swell("gate --case " + path("three/case.toml"));
+  EXPECT_EQ(gate.exit_code, 0) << gate.output;
+  EXPECT_TRUE(contains(gate.output, "derived.disp_y")) << gate.output;
+
+  const CliRun no_height = swell("synth --model jonswap --hs 2.5 --tp 7 --impl fftw --n 16 "
+                                 "--length 300 --fields dx,dy --out " + path("none"));
+  EXPECT_EQ(no_height.exit_code, 2);
+  EXPECT_TRUE(contains(no_height.output, "--fields must include height (h)")) << no_height.output;
+  const CliRun unknown = swell("synth --model jonswap --hs 2.5 --tp 7 --impl fftw --n 16 "
+                               "--length 300 --fields h,dz --out " + path("none"));
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_TRUE(contains(unknown.output, "unknown field 'dz'; valid: height (h)")) << unknown.output;
+  const CliRun twice = swell("synth --model jonswap --hs 2.5 --tp 7 --impl fftw --n 16 "
+                             "--length 300 --fields h,height --out " + path("none"));
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_TRUE(contains(twice.output, "--fields names height twice")) << twice.output;
+  EXPECT_FALSE(fs::exists(dir_ / "none"));
+}
+
 TEST_F(OceanCli, SynthFromACaseFileWithOverrides) {
   {
     std::ofstream(path("phillips.toml")) << R"([grid]

@@ -1,4 +1,6 @@
 #include "checks/ocean/analysis.hpp"
+#include <chrono>
+
 #include "swell/reference/phase.hpp"
 #include "swell/validation/stats/statistics.hpp"
 
@@ -161,6 +163,8 @@ void Analysis::run_pass() const {
   p.energy.assign(waves, 0.0);
   p.groups = group_by_omega(shared_->resolved);
   p.s.assign(p.groups.omegas.size(), Complex(0));
+  const bool keep_series = frames <= FramePass::kKeptSeriesFrames;
+  if (keep_series) p.series.resize(waves * frames);
   p.derived.start(*this);
   if (options_.analysis_backend != kAnalysisBackend) p.parseval.start(*this);
   const double scale = 1.0 / double(count_);
@@ -231,8 +235,10 @@ void Analysis::run_pass() const {
         p.r1[w] += std::conj(e) * y;
         p.r2[w] += e * y;
         p.energy[w] += std::norm(y);
+        if (keep_series) p.series[w * frames + f] = y;
       }
     });
+    progress(f + 1 == frames, [&] { return fmt::format("frame {} of {} judged", f + 1, frames); });
   });
   p.parseval.state.reset();
   release_analysis_scratch();
@@ -258,13 +264,16 @@ const DispersionPass& Analysis::dispersion_pass() const {
   return dispersion_;
 }
 
-// The heights streamed again (height only), each frame's transform at the fitted wave vectors.
+// Each frame's transform at the fitted wave vectors again: from the series the first pass kept
+// (few frames), or from the heights streamed again (height only) and transformed as the first
+// pass transformed them.
 void Analysis::run_dispersion_pass() const {
   const auto& fits = wave_fits();
   const FramePass& p = pass();
   DispersionPass& d = dispersion_;
+  const std::size_t frames = times_.size();
   double dt = 0;
-  for (std::size_t f = 1; f < times_.size(); ++f) dt = std::max(dt, times_[f] - times_[f - 1]);
+  for (std::size_t f = 1; f < frames; ++f) dt = std::max(dt, times_[f] - times_[f - 1]);
   d.max_omega = 0.95 * kPi / dt;
   for (const WaveFit& f : fits) {
     if (f.wave->omega > 0 && 3 * f.wave->omega / 2 < d.max_omega) d.strongest.push_back(&f);
@@ -272,23 +281,15 @@ void Analysis::run_dispersion_pass() const {
   std::sort(d.strongest.begin(), d.strongest.end(),
             [](const WaveFit* x, const WaveFit* y) { return x->energy > y->energy; });
   if (d.strongest.size() > 24) d.strongest.resize(24);
-  d.series.assign(d.strongest.size(), std::vector<Complex>(times_.size()));
+  d.series.assign(d.strongest.size(), std::vector<Complex>(frames));
   for (WaveFit& fit : fits_) fit.residual = 0;
   const double scale = 1.0 / double(count_);
   std::vector<Complex> phases(p.groups.omegas.size());
   const std::size_t chunks = std::min<std::size_t>(fits.size(), std::size_t(2 * threads_));
-  frames_.stream([](int, Field field) { return field == Field::height; },
-                 [&](std::size_t f, const reference::FieldFrame& frame) {
-    std::span<const Complex> transform;
-    double factor = 1;
-    if (f == 0) {
-      transform = shared_->spectrum0;
-    } else {
-      transform = analysis_transform(height_of(frame, f), sampling_);
-      factor = scale;
-    }
-    // y exactly as the first pass saw it: frame 0's ĥ, or X(k) · (1/N).
-    auto value = [&](std::size_t index) { return f == 0 ? transform[index] : transform[index] * factor; };
+  auto wave_of = [&](const WaveFit& fit) { return std::size_t(fit.wave - shared_->resolved.data()); };
+  // Frame f's residuals and strongest series from y(w), its transform at resolved wave w
+  // exactly as the first pass saw it (frame 0's ĥ, or X(k) · (1/N)).
+  auto fold = [&](std::size_t f, const auto& y) {
     for (std::size_t g = 0; g < phases.size(); ++g) {
       phases[g] = reference::unit_phasor(-reference::reduced_phase(p.groups.omegas[g], times_[f]));
     }
@@ -296,15 +297,39 @@ void Analysis::run_dispersion_pass() const {
       const std::size_t begin = chunk * fits_.size() / chunks, end = (chunk + 1) * fits_.size() / chunks;
       for (std::size_t i = begin; i < end; ++i) {
         WaveFit& fit = fits_[i];
-        const std::size_t w = std::size_t(fit.wave - shared_->resolved.data());
+        const std::size_t w = wave_of(fit);
         const Complex e = phases[p.groups.group[w]];
-        const Complex y = value(fit.wave->index);
-        fit.residual += std::norm(y - fit.a * e - fit.b * std::conj(e));
+        fit.residual += std::norm(y(w) - fit.a * e - fit.b * std::conj(e));
       }
     });
-    for (std::size_t j = 0; j < d.strongest.size(); ++j) d.series[j][f] = value(d.strongest[j]->wave->index);
+    for (std::size_t j = 0; j < d.strongest.size(); ++j) d.series[j][f] = y(wave_of(*d.strongest[j]));
+  };
+  if (!p.series.empty()) {
+    for (std::size_t f = 0; f < frames; ++f) fold(f, [&](std::size_t w) { return p.series[w * frames + f]; });
+    return;
+  }
+  frames_.stream([](int, Field field) { return field == Field::height; },
+                 [&](std::size_t f, const reference::FieldFrame& frame) {
+    if (f == 0) {
+      fold(f, [&](std::size_t w) { return shared_->spectrum0[shared_->resolved[w].index]; });
+    } else {
+      const auto transform = analysis_transform(height_of(frame, f), sampling_);
+      fold(f, [&](std::size_t w) { return transform[shared_->resolved[w].index] * scale; });
+    }
+    progress(f + 1 == frames, [&] {
+      return fmt::format("frame {} of {} fitted again (dispersion.residual)", f + 1, frames);
+    });
   });
   release_analysis_scratch();
+}
+
+void Analysis::progress(bool last, const std::function<std::string()>& message) const {
+  // At most one line a second, and the last frame's: a log of a long run stays readable.
+  if (!options_.progress) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (!last && now - last_progress_ < std::chrono::seconds(1)) return;
+  last_progress_ = now;
+  options_.progress(message());
 }
 
 [[noreturn]] void throw_rounding_hides_every_wave(double u, const OceanCase& c) {

@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
+#include <functional>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -196,6 +198,11 @@ struct FramePass {
   // Per distinct ω of the resolved waves (group_by_omega): Σ conj(e)², e = e^(−iωt).
   OmegaGroups groups;
   std::vector<Complex> s;
+  // Up to kKeptSeriesFrames frames, each resolved wave's series itself (series[w × frames + f]):
+  // no more memory than the sums of that many frames, and the dispersion pass then reads it
+  // instead of streaming the frames again. Empty for more frames.
+  static constexpr std::size_t kKeptSeriesFrames = 8;
+  std::vector<Complex> series;
 };
 
 // The second pass, for dispersion.residual: Σf |y_f − a e_f − b conj e_f|² per fitted wave
@@ -277,6 +284,8 @@ class Analysis {
  private:
   void run_pass() const;
   void run_dispersion_pass() const;
+  // OceanCheckOptions::progress, at most once a second and for the `last` frame.
+  void progress(bool last, const std::function<std::string()>& message) const;
 
   const OceanCase& c_;
   const FrameSource& frames_;
@@ -301,6 +310,7 @@ class Analysis {
   mutable std::vector<WaveFit> fits_;
   mutable std::string misdeclared_table_;
   mutable MeasuredLevel level_;
+  mutable std::chrono::steady_clock::time_point last_progress_ = std::chrono::steady_clock::now();
   mutable std::once_flag pass_once_, fits_once_, dispersion_once_, table_once_, level_once_;
 };
 

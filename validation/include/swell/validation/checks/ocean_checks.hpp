@@ -24,6 +24,7 @@
 //               Hs steady across frames
 //   derived     slopes, displacements and Jacobian consistent with the height field
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,6 +42,8 @@ struct OceanCheckOptions {
   // The engine scales its spectrum by an unknown constant: fit it (reported as
   // "scale"), judge everything else up to it, and do not judge the energy.
   bool free_scale = false;
+  // Told of each frame as the passes over the frames go (the gate's progress), when set.
+  std::function<void(const std::string&)> progress;
 };
 
 struct OceanCheckReport {
