@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -153,6 +154,24 @@ TEST_F(StreamedGate, PrecisionIsThatOfEveryFrameNotFrameZeros) {
   EXPECT_EQ(report.unit_roundoff, 0x1p-24);
   for (const auto& note : report.notes) EXPECT_EQ(note.find("half"), std::string::npos) << note;
   expect_same_reports(path);
+}
+
+// The dispersion pass reads each frame's transform back from a temporary file; where none can
+// be made (TMPDIR missing), it reads and transforms the frames again, with the same report.
+TEST_F(StreamedGate, WithoutATemporaryFileTheFramesAreReadAgain) {
+  const OceanCase c = small_case(6);
+  CaseFile case_file;
+  case_file.ocean = c;
+  const fs::path path = write("exr", case_file, swell::test::render_surface(c), FrameFormat::exr);
+  const CaseFile read_back = swell::validation::read_case_file(path);
+  const auto in_memory = swell::validation::run_gate(read_back, swell::validation::read_frames(read_back),
+                                                     GateOptions{});
+  const char* previous = std::getenv("TMPDIR");
+  const std::string kept = previous ? previous : "";
+  ::setenv("TMPDIR", (dir_ / "no_such_directory").c_str(), 1);
+  const auto streamed = swell::validation::run_gate(path, GateOptions{});
+  if (previous) ::setenv("TMPDIR", kept.c_str(), 1); else ::unsetenv("TMPDIR");
+  EXPECT_EQ(comparable(streamed).dump(1), comparable(in_memory).dump(1));
 }
 
 // Each frame as read_frames reads it (values, times, precision), in order, and any one again.

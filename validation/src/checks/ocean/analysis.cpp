@@ -1,4 +1,5 @@
 #include "checks/ocean/analysis.hpp"
+#include "checks/ocean/series_spill.hpp"
 #include <chrono>
 
 #include "swell/reference/phase.hpp"
@@ -163,8 +164,9 @@ void Analysis::run_pass() const {
   p.energy.assign(waves, 0.0);
   p.groups = group_by_omega(shared_->resolved);
   p.s.assign(p.groups.omegas.size(), Complex(0));
-  const bool keep_series = frames <= FramePass::kKeptSeriesFrames;
-  if (keep_series) p.series.resize(waves * frames);
+  // The dispersion pass (≥ 3 frames) reads each frame's ĥ at the resolved waves back from disk.
+  if (frames >= 3) p.spill = std::make_shared<SeriesSpill>(waves);
+  std::vector<Complex> frame_series(p.spill && p.spill->ok() ? waves : 0);
   p.derived.start(*this);
   if (options_.analysis_backend != kAnalysisBackend) p.parseval.start(*this);
   const double scale = 1.0 / double(count_);
@@ -235,9 +237,10 @@ void Analysis::run_pass() const {
         p.r1[w] += std::conj(e) * y;
         p.r2[w] += e * y;
         p.energy[w] += std::norm(y);
-        if (keep_series) p.series[w * frames + f] = y;
+        if (!frame_series.empty()) frame_series[w] = y;
       }
     });
+    if (!frame_series.empty()) p.spill->write(f, frame_series);
     progress(f + 1 == frames, [&] { return fmt::format("frame {} of {} judged", f + 1, frames); });
   });
   p.parseval.state.reset();
@@ -264,9 +267,9 @@ const DispersionPass& Analysis::dispersion_pass() const {
   return dispersion_;
 }
 
-// Each frame's transform at the fitted wave vectors again: from the series the first pass kept
-// (few frames), or from the heights streamed again (height only) and transformed as the first
-// pass transformed them.
+// Each frame's transform at the fitted wave vectors again: from the series the first pass wrote
+// to disk, or, where it could not, from the heights streamed again (height only) and
+// transformed as the first pass transformed them.
 void Analysis::run_dispersion_pass() const {
   const auto& fits = wave_fits();
   const FramePass& p = pass();
@@ -304,9 +307,16 @@ void Analysis::run_dispersion_pass() const {
     });
     for (std::size_t j = 0; j < d.strongest.size(); ++j) d.series[j][f] = y(wave_of(*d.strongest[j]));
   };
-  if (!p.series.empty()) {
-    for (std::size_t f = 0; f < frames; ++f) fold(f, [&](std::size_t w) { return p.series[w * frames + f]; });
-    return;
+  if (p.spill && p.spill->ok()) {
+    std::vector<Complex> y(shared_->resolved.size());
+    bool whole = true;
+    for (std::size_t f = 0; f < frames && whole; ++f) {
+      whole = p.spill->read(f, y);
+      if (whole) fold(f, [&](std::size_t w) { return y[w]; });
+    }
+    pass_.spill.reset();
+    if (whole) return;
+    for (WaveFit& fit : fits_) fit.residual = 0;  // the file failed part-way: from the frames
   }
   frames_.stream([](int, Field field) { return field == Field::height; },
                  [&](std::size_t f, const reference::FieldFrame& frame) {

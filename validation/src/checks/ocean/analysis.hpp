@@ -142,6 +142,7 @@ struct MeasuredLevel {
 };
 
 class Analysis;
+class SeriesSpill;
 std::string diagnose_table_declarations(const Analysis& a);
 MeasuredLevel measure_level(const Analysis& a);
 // The cause of an energy factor measured as `ratio` with sampling range [low, high]: the known
@@ -198,11 +199,9 @@ struct FramePass {
   // Per distinct ω of the resolved waves (group_by_omega): Σ conj(e)², e = e^(−iωt).
   OmegaGroups groups;
   std::vector<Complex> s;
-  // Up to kKeptSeriesFrames frames, each resolved wave's series itself (series[w × frames + f]):
-  // no more memory than the sums of that many frames, and the dispersion pass then reads it
-  // instead of streaming the frames again. Empty for more frames.
-  static constexpr std::size_t kKeptSeriesFrames = 8;
-  std::vector<Complex> series;
+  // Each frame's ĥ at the resolved waves, on disk for the dispersion pass (≥ 3 frames;
+  // series_spill.hpp); null or not ok() when it could not be written.
+  std::shared_ptr<SeriesSpill> spill;
 };
 
 // The second pass, for dispersion.residual: Σf |y_f − a e_f − b conj e_f|² per fitted wave
