@@ -596,7 +596,8 @@ double FrameFileReader::read(int f, FieldFrame& frame, FrameReadScratch& scratch
   double roundoff = 0;
   const std::function<bool(Field)> keep_here = [&](Field field) { return !keep || keep(f, field); };
   frame.time = ocean_.time(f);
-  frame.fields.clear();
+  // Each field read replaces its values; the arrays of a frame read before are reused
+  // (image_frames.cpp) and the fields not read dropped below.
   frame.imaginary.clear();
   for (const auto& [field, channel] : input_.channels) {
     if (!one_file_per_field(l.format) && field != l.first_field) break;  // one file for all fields
@@ -625,13 +626,14 @@ double FrameFileReader::read(int f, FieldFrame& frame, FrameReadScratch& scratch
     }
     roundoff = std::max(roundoff, u);
   }
-  // One file per field: each was read whole (and checked); drop those not wanted.
-  for (const auto& [field, channel] : input_.channels) {
-    if (!keep_here(field)) {
-      frame.fields.erase(field);
-      frame.imaginary.erase(field);
-    }
-  }
+  // One file per field: each was read whole (and checked); drop those not wanted, and any a
+  // frame read before into `frame` held.
+  std::erase_if(frame.fields, [&](const auto& entry) {
+    return !input_.channels.count(entry.first) || !keep_here(entry.first);
+  });
+  std::erase_if(frame.imaginary, [&](const auto& entry) {
+    return !input_.channels.count(entry.first) || !keep_here(entry.first);
+  });
   return roundoff;
 }
 

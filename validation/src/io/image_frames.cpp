@@ -167,7 +167,6 @@ Layout lay_out(const std::string& file, ImageKind kind, const ImageHeader& heade
                                      "16-bit unsigned integers with [input] value_range",
                                      file, name, reference::field_name(field), type_name));
     }
-    if (t.kept || t.range) t.values.resize(count);
     t.offset = std::size_t(index);  // made relative to `first` below
     layout.first = std::min(layout.first, index);
     layout.last = std::max(layout.last, index);
@@ -298,12 +297,33 @@ double read_image_frame(const fs::path& path, ImageKind kind, const Grid& grid,
     if (!image) throw InvalidInput(fmt::format("{}: cannot read the image: {}", file, why));
     return image->header();
   };
+  // The values go into the arrays `frame` already holds for these fields where it holds them (a
+  // stream reading frame after frame into the same frame): fresh arrays of that size cost their
+  // page faults and the kernel's zeroing on every frame.
+  const std::size_t count = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny);
+  auto take_arrays = [&](Layout& layout) {
+    for (Taken& t : layout.taken) {
+      if (!t.kept && !t.range) continue;
+      if (auto it = frame.fields.find(t.field); it != frame.fields.end()) t.values.swap(it->second);
+      t.values.resize(count);
+    }
+  };
+  auto give_back = [&](Layout& layout) {
+    for (Taken& t : layout.taken) {
+      if (!t.values.empty()) frame.fields[t.field].swap(t.values);
+    }
+  };
   Layout layout = lay_out(file, kind, exr_header ? *exr_header : open(), grid, input, keep);
+  take_arrays(layout);
   const bool direct = exr_header && layout.all_float && !layout.any_integer &&
                       read_exr_directly(file, grid, layout, scratch.exr);
   if (!direct) {
     // OpenImageIO orders an EXR's channels its own way (R, G, B, A first): laid out again.
-    if (!image) layout = lay_out(file, kind, open(), grid, input, keep);
+    if (!image) {
+      give_back(layout);
+      layout = lay_out(file, kind, open(), grid, input, keep);
+      take_arrays(layout);
+    }
     if (layout.all_float) {
       read_through_module(file, *image, grid, layout, scratch.f32);
     } else {
@@ -317,7 +337,7 @@ double read_image_frame(const fs::path& path, ImageKind kind, const Grid& grid,
                       t.first_bad_value, t.bad);
     }
     if (t.range) roundoff = std::max(roundoff, quantization_roundoff(*t.range, t.levels, t.values));
-    if (t.kept) frame.fields[t.field] = std::move(t.values);
+    if (t.kept) frame.fields[t.field].swap(t.values);
   }
   return roundoff;
 }

@@ -107,19 +107,28 @@ std::vector<std::complex<double>> field_spectrum(const std::vector<double>& fiel
   return spectrum;
 }
 
-std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
-                                        const Grid& grid) {
+namespace {
+
+void field_from_spectrum_into(const std::vector<std::complex<double>>& spectrum, const Grid& grid,
+                              std::vector<double>& field) {
   const std::size_t count = std::size_t(grid.nx) * grid.ny;
   if (spectrum.size() != count) throw InvalidInput("spectrum size does not match the grid");
   auto* in = static_cast<Complex*>(scratch(0).get(count * sizeof(Complex)));
   auto* out = static_cast<Complex*>(scratch(1).get(count * sizeof(Complex)));
   std::copy(spectrum.begin(), spectrum.end(), in);
   analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::inverse).execute(in, out);
-  std::vector<double> field;
-  field.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) field.push_back(out[i].real());
+  field.resize(count);
+  for (std::size_t i = 0; i < count; ++i) field[i] = out[i].real();
   scratch(0).release_if_large();
   scratch(1).release_if_large();
+}
+
+}  // namespace
+
+std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
+                                        const Grid& grid) {
+  std::vector<double> field;
+  field_from_spectrum_into(spectrum, grid, field);
   return field;
 }
 
@@ -205,6 +214,11 @@ void release_analysis_scratch() {
 std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
                                         const reference::Sampling& sampling) {
   return field_from_spectrum(spectrum, transform_shape(sampling));
+}
+
+void field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
+                         const reference::Sampling& sampling, std::vector<double>& field) {
+  field_from_spectrum_into(spectrum, transform_shape(sampling), field);
 }
 
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,

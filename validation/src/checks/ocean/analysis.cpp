@@ -176,6 +176,7 @@ void Analysis::run_pass() const {
   // Chunks of wave vectors, a few per thread, for whichever thread is free.
   const std::size_t wave_chunks = std::min<std::size_t>(waves, std::size_t(2 * threads_));
   const std::size_t derived_fields = p.derived.present.size();
+  detail::TaskPool pool(threads_);
   frames_.stream({}, [&](std::size_t f, const reference::FieldFrame& frame) {
     const std::vector<double>& h = height_of(frame, f);
     std::span<const Complex> hat;
@@ -202,7 +203,7 @@ void Analysis::run_pass() const {
       p.s[g] += std::conj(phases[g]) * std::conj(phases[g]);
     }
     const double height_power = p.height_sums[f] / double(count_);  // mean_square(h), bit for bit
-    detail::run_tasks(derived_fields + 1 + wave_chunks, threads_, [&](std::size_t task) {
+    pool.run(derived_fields + 1 + wave_chunks, [&](std::size_t task) {
       if (task < derived_fields) {
         p.derived.add(*this, f, task, frame, hat, height_power);
         return;
@@ -244,6 +245,7 @@ void Analysis::run_pass() const {
     progress(f + 1 == frames, [&] { return fmt::format("frame {} of {} judged", f + 1, frames); });
   });
   p.parseval.state.reset();
+  p.derived.finish();
   release_analysis_scratch();
 }
 
@@ -290,13 +292,14 @@ void Analysis::run_dispersion_pass() const {
   std::vector<Complex> phases(p.groups.omegas.size());
   const std::size_t chunks = std::min<std::size_t>(fits.size(), std::size_t(2 * threads_));
   auto wave_of = [&](const WaveFit& fit) { return std::size_t(fit.wave - shared_->resolved.data()); };
+  detail::TaskPool pool(threads_);
   // Frame f's residuals and strongest series from y(w), its transform at resolved wave w
   // exactly as the first pass saw it (frame 0's ĥ, or X(k) · (1/N)).
   auto fold = [&](std::size_t f, const auto& y) {
     for (std::size_t g = 0; g < phases.size(); ++g) {
       phases[g] = reference::unit_phasor(-reference::reduced_phase(p.groups.omegas[g], times_[f]));
     }
-    detail::run_tasks(chunks, threads_, [&](std::size_t chunk) {
+    pool.run(chunks, [&](std::size_t chunk) {
       const std::size_t begin = chunk * fits_.size() / chunks, end = (chunk + 1) * fits_.size() / chunks;
       for (std::size_t i = begin; i < end; ++i) {
         WaveFit& fit = fits_[i];

@@ -181,6 +181,18 @@ struct DerivedFold {
   // Field `i` of `present` on frame f.
   void add(const Analysis& a, std::size_t f, std::size_t i, const reference::FieldFrame& frame,
            std::span<const Complex> spectrum, double height_power);
+  void finish();  // frees the arrays the pass reused
+
+  // The arrays one add() works in, kept for the next.
+  struct Scratch {
+    std::vector<Complex> spectrum;
+    std::vector<double> expected, dxx, dyy, dxy, unit;
+  };
+  Scratch& acquire();
+  void release(Scratch& scratch);
+  std::vector<std::unique_ptr<Scratch>> scratch_sets;
+  std::vector<Scratch*> free_scratch;
+  std::shared_ptr<std::mutex> scratch_mutex = std::make_shared<std::mutex>();
 };
 
 // Everything the checks read of the frames beyond frame 0, gathered in one pass.

@@ -241,6 +241,27 @@ Complex multiplier(Field field, double l, double kx, double ky, double k) {
 
 }  // namespace
 
+DerivedFold::Scratch& DerivedFold::acquire() {
+  std::lock_guard lock(*scratch_mutex);
+  if (free_scratch.empty()) {
+    scratch_sets.push_back(std::make_unique<Scratch>());
+    return *scratch_sets.back();
+  }
+  Scratch* out = free_scratch.back();
+  free_scratch.pop_back();
+  return *out;
+}
+
+void DerivedFold::release(Scratch& scratch) {
+  std::lock_guard lock(*scratch_mutex);
+  free_scratch.push_back(&scratch);
+}
+
+void DerivedFold::finish() {
+  free_scratch.clear();
+  scratch_sets.clear();
+}
+
 void DerivedFold::start(const Analysis& a) {
   for (Field f : {Field::slope_x, Field::slope_y, Field::disp_x, Field::disp_y, Field::jacobian}) {
     if (a.frames().has(f)) present.push_back(f);
@@ -269,8 +290,18 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t i, const
   const Sampling& g = a.sampling();
   const double lambda = a.ocean_case().choppiness;
   const double u = a.unit_roundoff();
-  auto derive = [&](const auto& m, double& mean_m2) {
-    std::vector<Complex> s(spectrum.size());
+  // This call's arrays, from the fold's free sets: reused frame after frame (fresh arrays cost
+  // their page faults and the kernel's zeroing each time), at most one set per thread.
+  Scratch& scratch = acquire();
+  struct Release {
+    DerivedFold& fold;
+    Scratch& scratch;
+    ~Release() { fold.release(scratch); }
+  } release_on_exit{*this, scratch};
+  // The field λ's multiplier m makes of the height spectrum, into `into`.
+  auto derive = [&](const auto& m, double& mean_m2, std::vector<double>& into) {
+    std::vector<Complex>& s = scratch.spectrum;
+    s.resize(spectrum.size());
     mean_m2 = 0;
     for (std::size_t e = 0; e < spectrum.size(); ++e) {
       const Complex mult = g.carries_energy(e) ? m(kx_of[e], ky_of[e], k_of[e]) : 0.0;
@@ -278,14 +309,15 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t i, const
       mean_m2 += std::norm(mult);
     }
     mean_m2 /= double(spectrum.size());
-    return field_from_spectrum(s, g);
+    field_from_spectrum(s, g, into);
   };
-  auto jacobian_minus_one = [&](double l, double& mean_m2, double& products) {
+  auto jacobian_minus_one = [&](double l, double& mean_m2, double& products, std::vector<double>& out) {
     double m_xx = 0, m_yy = 0, m_xy = 0;
-    const auto dxx = derive([&](double kx, double, double k) { return Complex(-l * kx * kx / k); }, m_xx);
-    const auto dyy = derive([&](double, double ky, double k) { return Complex(-l * ky * ky / k); }, m_yy);
-    const auto dxy = derive([&](double kx, double ky, double k) { return Complex(-l * kx * ky / k); }, m_xy);
-    std::vector<double> out(dxx.size());
+    std::vector<double>&dxx = scratch.dxx, &dyy = scratch.dyy, &dxy = scratch.dxy;
+    derive([&](double kx, double, double k) { return Complex(-l * kx * kx / k); }, m_xx, dxx);
+    derive([&](double, double ky, double k) { return Complex(-l * ky * ky / k); }, m_yy, dyy);
+    derive([&](double kx, double ky, double k) { return Complex(-l * kx * ky / k); }, m_xy, dxy);
+    out.resize(dxx.size());
     products = 0;
     // The stored height's rounding reaches J through δJ = (1 + b) δa + (1 + a) δb − 2c δc: each
     // δ is the height's rounding through its multiplier (m_xx, m_yy, m_xy), weighted by the
@@ -305,26 +337,28 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t i, const
     const double n = double(dxx.size());
     products /= n;
     mean_m2 = m_xx * weight_a / n + m_yy * weight_b / n + m_xy * (2 + 4 * weight_c / n);
-    return out;
   };
   const Field field = present[i];
   const std::vector<double>& got = values.fields.at(field);
   const bool jacobian = field == Field::jacobian;
   double mean_m2 = 0, jacobian_products = 0;
-  std::vector<double> expected;
+  std::vector<double>& expected = scratch.expected;
   if (jacobian) {
-    expected = jacobian_minus_one(lambda, mean_m2, jacobian_products);
+    jacobian_minus_one(lambda, mean_m2, jacobian_products, expected);
   } else {
-    expected = derive([&](double kx, double ky, double k) { return multiplier(field, lambda, kx, ky, k); }, mean_m2);
+    derive([&](double kx, double ky, double k) { return multiplier(field, lambda, kx, ky, k); }, mean_m2, expected);
   }
   // What measures the error: the field's expected rms, or, where λ = 0 makes the
   // displacements (and J − 1) zero, what λ = 1 would put there.
   double expected_power = mean_square(expected);
   if (lambda == 0 && field != Field::slope_x && field != Field::slope_y) {
     double unit_m2 = 0, unit_products = 0;
-    expected_power = mean_square(
-        jacobian ? jacobian_minus_one(1.0, unit_m2, unit_products)
-                 : derive([&](double kx, double ky, double k) { return multiplier(field, 1.0, kx, ky, k); }, unit_m2));
+    if (jacobian) {
+      jacobian_minus_one(1.0, unit_m2, unit_products, scratch.unit);
+    } else {
+      derive([&](double kx, double ky, double k) { return multiplier(field, 1.0, kx, ky, k); }, unit_m2, scratch.unit);
+    }
+    expected_power = mean_square(scratch.unit);
   }
   // mean_square of the difference got − expected (J − 1 for the Jacobian), summed as it sums.
   double difference = 0;

@@ -58,6 +58,9 @@ std::span<const std::complex<double>> analysis_transform(const std::vector<doubl
 void release_analysis_scratch();
 std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
                                         const reference::Sampling& sampling);
+// The same into `field` (resized), reusing its memory: for loops over many frames.
+void field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
+                         const reference::Sampling& sampling, std::vector<double>& field);
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,
                                               const reference::Sampling& sampling, int threads = 1);
 std::vector<double> expected_periodogram(const std::vector<double>& travelling,
