@@ -195,8 +195,11 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
   std::optional<Analysis> analysis;
   for (;;) {
     const bool settled = frames.precision_final();
-    analysis.emplace(ocean_case, frames, options,
-                     settled ? std::move(travelling_power) : std::vector<double>(travelling_power), threads);
+    // τ is the case's (the caller's contract), so a second analysis evaluates it again rather
+    // than keep a copy of it through the first's pass.
+    if (travelling_power.empty()) travelling_power = expected_travelling_power(ocean_case, threads);
+    analysis.emplace(ocean_case, frames, options, std::move(travelling_power), threads);
+    travelling_power.clear();
     analysis->pass();
     if (settled || frames.precision() == analysis->precision()) break;
   }

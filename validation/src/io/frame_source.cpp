@@ -101,12 +101,15 @@ void FileFrameSource::stream(const FieldFilter& keep, const Visit& visit) const 
   std::mutex mutex;
   std::condition_variable changed;
   bool stop = false;
-  // Frame 0 from what the source kept, when it kept it.
-  const std::shared_ptr<const FieldFrame> first = first_;
+  // Frame 0 from what the source kept, when it kept it. It takes slot 0's place until it has
+  // been visited, so that no more than two frames are ever held.
+  std::shared_ptr<const FieldFrame> first = first_;
+  const bool kept_first = bool(first);
+  slots[0].ready = kept_first;
   double reading = 0;  // the reading thread's, added once it is joined
   std::thread reader([&] {
     FrameReadScratch scratch;
-    for (std::size_t f = first ? 1 : 0; f < frames; ++f) {
+    for (std::size_t f = kept_first ? 1 : 0; f < frames; ++f) {
       Slot& slot = slots[f % 2];
       {
         std::unique_lock lock(mutex);
@@ -138,16 +141,22 @@ void FileFrameSource::stream(const FieldFilter& keep, const Visit& visit) const 
     reading_seconds_ += reading;
   };
   // Frame 0's share of the stored precision, when it is not read again.
-  Tally tally = first ? first_tally_ : Tally{};
+  Tally tally = kept_first ? first_tally_ : Tally{};
   try {
     for (std::size_t f = 0; f < frames; ++f) {
-      if (f == 0 && first) {
+      if (f == 0 && kept_first) {
         if (keep) {
           visit(0, filtered(*first, 0, keep));
         } else {
           visit(0, *first);
         }
         first_.reset();  // streamed past: read again if asked for
+        first.reset();
+        {
+          std::lock_guard lock(mutex);
+          slots[0].ready = false;
+        }
+        changed.notify_all();
         continue;
       }
       Slot& slot = slots[f % 2];

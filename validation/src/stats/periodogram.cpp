@@ -1,6 +1,7 @@
 #include "swell/validation/stats/periodogram.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <limits>
 #include <string>
 #include <map>
@@ -43,6 +44,9 @@ const impls::Plan& analysis_plan(int nx, int ny, impls::Kind kind, impls::Direct
 // long as the transform. Arrays above kKeepBytes are freed after use instead of kept.
 constexpr std::size_t kKeepBytes = std::size_t(64) << 20;
 
+// KeepAnalysisScratch guards alive on this thread: while any is, nothing is freed.
+thread_local int keep_guards = 0;
+
 class Scratch {
  public:
   void* get(std::size_t bytes) {
@@ -50,7 +54,7 @@ class Scratch {
     return buffer_->host_data();
   }
   void release_if_large() {
-    if (buffer_ && buffer_->bytes() > kKeepBytes) buffer_.reset();
+    if (keep_guards == 0 && buffer_ && buffer_->bytes() > kKeepBytes) buffer_.reset();
   }
 
  private:
@@ -109,18 +113,27 @@ std::vector<std::complex<double>> field_spectrum(const std::vector<double>& fiel
 
 namespace {
 
-void field_from_spectrum_into(const std::vector<std::complex<double>>& spectrum, const Grid& grid,
-                              std::vector<double>& field) {
+// The inverse transform of what `fill` writes into the calling thread's transform input.
+void field_from_filled_spectrum(const Grid& grid, const std::function<void(std::span<Complex>)>& fill,
+                                std::vector<double>& field) {
   const std::size_t count = std::size_t(grid.nx) * grid.ny;
-  if (spectrum.size() != count) throw InvalidInput("spectrum size does not match the grid");
   auto* in = static_cast<Complex*>(scratch(0).get(count * sizeof(Complex)));
   auto* out = static_cast<Complex*>(scratch(1).get(count * sizeof(Complex)));
-  std::copy(spectrum.begin(), spectrum.end(), in);
+  fill({in, count});
   analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::inverse).execute(in, out);
   field.resize(count);
   for (std::size_t i = 0; i < count; ++i) field[i] = out[i].real();
   scratch(0).release_if_large();
   scratch(1).release_if_large();
+}
+
+void field_from_spectrum_into(const std::vector<std::complex<double>>& spectrum, const Grid& grid,
+                              std::vector<double>& field) {
+  const std::size_t count = std::size_t(grid.nx) * grid.ny;
+  if (spectrum.size() != count) throw InvalidInput("spectrum size does not match the grid");
+  field_from_filled_spectrum(grid, [&](std::span<Complex> in) {
+    std::copy(spectrum.begin(), spectrum.end(), in.begin());
+  }, field);
 }
 
 }  // namespace
@@ -206,6 +219,9 @@ std::span<const std::complex<double>> analysis_transform(const std::vector<doubl
   return {transform_into_scratch(field, transform_shape(sampling), energy), field.size()};
 }
 
+KeepAnalysisScratch::KeepAnalysisScratch() { ++keep_guards; }
+KeepAnalysisScratch::~KeepAnalysisScratch() { --keep_guards; }
+
 void release_analysis_scratch() {
   scratch(0).release_if_large();
   scratch(1).release_if_large();
@@ -219,6 +235,12 @@ std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>&
 void field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
                          const reference::Sampling& sampling, std::vector<double>& field) {
   field_from_spectrum_into(spectrum, transform_shape(sampling), field);
+}
+
+void field_from_spectrum(const reference::Sampling& sampling,
+                         const std::function<void(std::span<std::complex<double>>)>& fill,
+                         std::vector<double>& field) {
+  field_from_filled_spectrum(transform_shape(sampling), fill, field);
 }
 
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,

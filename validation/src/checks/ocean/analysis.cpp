@@ -43,10 +43,9 @@ Analysis::Analysis(const OceanCase& ocean_case, const FrameSource& frames, const
   u_ = std::max(precision_.unit_roundoff, kFp64Roundoff);
   storage_ = precision_.storage_roundoff;
   for (std::size_t f = 0; f < frames.size(); ++f) times_.push_back(frames.time(f));
-  {
-    const auto first = frames.frame(0, [](int, Field field) { return field == Field::height; });
-    height0_ = height_of(*first, 0);
-  }
+  const auto first = frames.frame(0, [](int, Field field) { return field == Field::height; });
+  const std::vector<double>& height0 = height_of(*first, 0);
+  height_moments0_.add(height0, 0.0);
 
   if (travelling.size() != sampling_.size()) {
     throw InternalError("Analysis: travelling power of the wrong size");
@@ -65,8 +64,8 @@ Analysis::Analysis(const OceanCase& ocean_case, const FrameSource& frames, const
           c_, precision_.unit_roundoff > 2 * kFp64Roundoff ? reference::kFloat32 : reference::kFloat64,
           0, "", &shared_->tau);
     } else {
-      field_spectrum(height0_, sampling_, shared_->spectrum0, &spectral_energy0_);
-      mean_square0_ = mean_square(height0_);
+      field_spectrum(height0, sampling_, shared_->spectrum0, &spectral_energy0_);
+      mean_square0_ = mean_square(height0);
     }
   });
 
@@ -126,9 +125,13 @@ Analysis::Analysis(const OceanCase& ocean_case, const FrameSource& frames, const
       w.tau_minus *= scale_;
     }
   }
-  shared_->resolved.reserve(shared_->half_plane.size());
-  for (const Wave& w : shared_->half_plane) {
-    if (w.mu >= floor_ && w.mu > 0) shared_->resolved.push_back(w);
+  {
+    std::vector<std::size_t> positions;
+    for (std::size_t i = 0; i < shared_->half_plane.size(); ++i) {
+      const Wave& w = shared_->half_plane[i];
+      if (w.mu >= floor_ && w.mu > 0) positions.push_back(i);
+    }
+    shared_->resolved = ResolvedWaves(shared_->half_plane, std::move(positions));
   }
   for (std::size_t e = 0; e < count_; ++e) {
     if (!sampling_.carries_energy(e) || shared_->mu[e] < floor_) shared_->stray.push_back(e);
@@ -159,14 +162,18 @@ void Analysis::run_pass() const {
   p.spectral_energies.assign(frames, spectral_energy0_);
   p.spatial_energies.assign(frames, 0);
   p.height_sums.assign(frames, 0);
-  p.r1.assign(waves, Complex(0));
-  p.r2.assign(waves, Complex(0));
-  p.energy.assign(waves, 0.0);
+  // Per resolved wave vector, the sums of fit_two_waves over the frames in frame order (the
+  // same additions, so the fit is the one of the whole series): Σ conj(e) y, Σ e y and Σ|y|²;
+  // per distinct ω, Σ conj(e)², e = e^(−iωt).
+  std::vector<Complex> r1(waves), r2(waves);
+  std::vector<double> energy(waves);
   p.groups = group_by_omega(shared_->resolved);
-  p.s.assign(p.groups.omegas.size(), Complex(0));
-  // The dispersion pass (≥ 3 frames) reads each frame's ĥ at the resolved waves back from disk.
+  std::vector<Complex> s(p.groups.omegas.size());
+  // The dispersion pass (≥ 3 frames) reads each frame's ĥ at the resolved waves back from disk,
+  // written a piece at a time.
   if (frames >= 3) p.spill = std::make_shared<SeriesSpill>(waves);
-  std::vector<Complex> frame_series(p.spill && p.spill->ok() ? waves : 0);
+  constexpr std::size_t kSpillPiece = std::size_t(1) << 16;
+  std::vector<Complex> spill_piece(p.spill && p.spill->ok() ? std::min(waves, kSpillPiece) : 0);
   p.derived.start(*this);
   if (options_.analysis_backend != kAnalysisBackend) p.parseval.start(*this);
   const double scale = 1.0 / double(count_);
@@ -177,90 +184,96 @@ void Analysis::run_pass() const {
   const std::size_t wave_chunks = std::min<std::size_t>(waves, std::size_t(2 * threads_));
   const std::size_t derived_fields = p.derived.present.size();
   detail::TaskPool pool(threads_);
-  frames_.stream({}, [&](std::size_t f, const reference::FieldFrame& frame) {
-    const std::vector<double>& h = height_of(frame, f);
-    std::span<const Complex> hat;
-    if (f == 0) {
-      hat = shared_->spectrum0;
-    } else {
-      const auto transform = analysis_transform(h, sampling_, &p.spectral_energies[f]);
-      spectrum.resize(count_);
-      for (std::size_t e = 0; e < count_; ++e) spectrum[e] = transform[e] * scale;
-      hat = spectrum;
-    }
-    {
-      long double spatial = 0;
-      double sum = 0;
-      for (double x : h) {
-        spatial += (long double)x * x;
-        sum += x * x;
+  {
+    const KeepAnalysisScratch keep_scratch;
+    frames_.stream({}, [&](std::size_t f, const reference::FieldFrame& frame) {
+      const std::vector<double>& h = height_of(frame, f);
+      std::span<const Complex> hat;
+      if (f == 0) {
+        hat = shared_->spectrum0;
+      } else {
+        const auto transform = analysis_transform(h, sampling_, &p.spectral_energies[f]);
+        spectrum.resize(count_);
+        for (std::size_t e = 0; e < count_; ++e) spectrum[e] = transform[e] * scale;
+        hat = spectrum;
       }
-      p.spatial_energies[f] = spatial;
-      p.height_sums[f] = sum;
-    }
-    for (std::size_t g = 0; g < phases.size(); ++g) {
-      phases[g] = reference::unit_phasor(-reference::reduced_phase(p.groups.omegas[g], times_[f]));
-      p.s[g] += std::conj(phases[g]) * std::conj(phases[g]);
-    }
-    const double height_power = p.height_sums[f] / double(count_);  // mean_square(h), bit for bit
-    pool.run(derived_fields + 1 + wave_chunks, [&](std::size_t task) {
-      if (task < derived_fields) {
-        p.derived.add(*this, f, task, frame, hat, height_power);
-        return;
-      }
-      if (task == derived_fields) {
-        FrameStray& s = p.strays[f];
-        for (std::size_t e : shared_->stray) {
-          const double power = std::norm(hat[e]);
-          s.energy += power;
-          if (!(shared_->mu[e] > 0)) s.empty += power;
-          if (power > s.largest) {
-            s.largest = power;
-            s.largest_at = e;
-          }
-          if (grid) {
-            const auto [n, m] = sampling_.wave_index(e);
-            if (std::abs(n) >= sampling_.grid().nx / 4 && std::abs(m) >= sampling_.grid().ny / 4) s.corner += power;
-            if (Grid::is_nyquist(n, sampling_.grid().nx) || Grid::is_nyquist(m, sampling_.grid().ny)) s.nyquist += power;
-          }
+      {
+        long double spatial = 0;
+        double sum = 0;
+        for (double x : h) {
+          spatial += (long double)x * x;
+          sum += x * x;
         }
-        s.mean_level = hat[0].real();
-        s.mean_square = double(p.spectral_energies[f]) / double(count_);
-        p.hermitian.add(*this, f, frame, hat);
-        if (p.parseval.state) p.parseval.add(*this, h);
-        return;
+        p.spatial_energies[f] = spatial;
+        p.height_sums[f] = sum;
       }
-      const std::size_t chunk = task - derived_fields - 1;
-      const std::size_t begin = chunk * waves / wave_chunks, end = (chunk + 1) * waves / wave_chunks;
-      for (std::size_t w = begin; w < end; ++w) {
-        const Complex e = phases[p.groups.group[w]];
-        const Complex y = hat[shared_->resolved[w].index];
-        p.r1[w] += std::conj(e) * y;
-        p.r2[w] += e * y;
-        p.energy[w] += std::norm(y);
-        if (!frame_series.empty()) frame_series[w] = y;
+      for (std::size_t g = 0; g < phases.size(); ++g) {
+        phases[g] = reference::unit_phasor(-reference::reduced_phase(p.groups.omegas[g], times_[f]));
+        s[g] += std::conj(phases[g]) * std::conj(phases[g]);
       }
+      const double height_power = p.height_sums[f] / double(count_);  // mean_square(h), bit for bit
+      pool.run(derived_fields + 1 + wave_chunks, [&](std::size_t task) {
+        const KeepAnalysisScratch keep_task_scratch;  // a pool thread's, freed as the pool ends
+        if (task < derived_fields) {
+          p.derived.add(*this, f, task, frame, hat, height_power);
+          return;
+        }
+        if (task == derived_fields) {
+          FrameStray& s = p.strays[f];
+          for (std::size_t e : shared_->stray) {
+            const double power = std::norm(hat[e]);
+            s.energy += power;
+            if (!(shared_->mu[e] > 0)) s.empty += power;
+            if (power > s.largest) {
+              s.largest = power;
+              s.largest_at = e;
+            }
+            if (grid) {
+              const auto [n, m] = sampling_.wave_index(e);
+              if (std::abs(n) >= sampling_.grid().nx / 4 && std::abs(m) >= sampling_.grid().ny / 4) s.corner += power;
+              if (Grid::is_nyquist(n, sampling_.grid().nx) || Grid::is_nyquist(m, sampling_.grid().ny)) s.nyquist += power;
+            }
+          }
+          s.mean_level = hat[0].real();
+          s.mean_square = double(p.spectral_energies[f]) / double(count_);
+          p.hermitian.add(*this, f, frame, hat);
+          if (p.parseval.state) p.parseval.add(*this, h);
+          return;
+        }
+        const std::size_t chunk = task - derived_fields - 1;
+        const std::size_t begin = chunk * waves / wave_chunks, end = (chunk + 1) * waves / wave_chunks;
+        for (std::size_t w = begin; w < end; ++w) {
+          const Complex e = phases[p.groups.group[w]];
+          const Complex y = hat[shared_->resolved[w].index];
+          r1[w] += std::conj(e) * y;
+          r2[w] += e * y;
+          energy[w] += std::norm(y);
+        }
+      });
+      for (std::size_t first = 0; first < waves && !spill_piece.empty(); first += spill_piece.size()) {
+        const std::size_t n = std::min(spill_piece.size(), waves - first);
+        for (std::size_t w = 0; w < n; ++w) spill_piece[w] = hat[shared_->resolved[first + w].index];
+        p.spill->write(f, first, std::span<const Complex>(spill_piece.data(), n));
+      }
+      progress(f + 1 == frames, [&] { return fmt::format("frame {} of {} judged", f + 1, frames); });
     });
-    if (!frame_series.empty()) p.spill->write(f, frame_series);
-    progress(f + 1 == frames, [&] { return fmt::format("frame {} of {} judged", f + 1, frames); });
-  });
+  }
   p.parseval.state.reset();
   p.derived.finish();
   release_analysis_scratch();
+  fits_.reserve(waves);
+  for (std::size_t w = 0; w < waves; ++w) {
+    WaveFit fit;
+    fit.wave = &shared_->resolved[w];
+    fit.position = w;
+    if (!solve_two_waves(double(frames), s[p.groups.group[w]], r1[w], r2[w], fit.a, fit.b)) continue;
+    fit.energy = energy[w];
+    fits_.push_back(fit);
+  }
 }
 
 const std::vector<WaveFit>& Analysis::wave_fits() const {
-  std::call_once(fits_once_, [this] {
-    const FramePass& p = pass();
-    const double frames = double(times_.size());
-    for (std::size_t w = 0; w < shared_->resolved.size(); ++w) {
-      WaveFit fit;
-      fit.wave = &shared_->resolved[w];
-      if (!solve_two_waves(frames, p.s[p.groups.group[w]], p.r1[w], p.r2[w], fit.a, fit.b)) continue;
-      fit.energy = p.energy[w];
-      fits_.push_back(fit);
-    }
-  });
+  pass();
   return fits_;
 }
 
@@ -291,7 +304,6 @@ void Analysis::run_dispersion_pass() const {
   const double scale = 1.0 / double(count_);
   std::vector<Complex> phases(p.groups.omegas.size());
   const std::size_t chunks = std::min<std::size_t>(fits.size(), std::size_t(2 * threads_));
-  auto wave_of = [&](const WaveFit& fit) { return std::size_t(fit.wave - shared_->resolved.data()); };
   detail::TaskPool pool(threads_);
   // Frame f's residuals and strongest series from y(w), its transform at resolved wave w
   // exactly as the first pass saw it (frame 0's ĥ, or X(k) · (1/N)).
@@ -303,12 +315,12 @@ void Analysis::run_dispersion_pass() const {
       const std::size_t begin = chunk * fits_.size() / chunks, end = (chunk + 1) * fits_.size() / chunks;
       for (std::size_t i = begin; i < end; ++i) {
         WaveFit& fit = fits_[i];
-        const std::size_t w = wave_of(fit);
+        const std::size_t w = fit.position;
         const Complex e = phases[p.groups.group[w]];
         fit.residual += std::norm(y(w) - fit.a * e - fit.b * std::conj(e));
       }
     });
-    for (std::size_t j = 0; j < d.strongest.size(); ++j) d.series[j][f] = y(wave_of(*d.strongest[j]));
+    for (std::size_t j = 0; j < d.strongest.size(); ++j) d.series[j][f] = y(d.strongest[j]->position);
   };
   if (p.spill && p.spill->ok()) {
     std::vector<Complex> y(shared_->resolved.size());

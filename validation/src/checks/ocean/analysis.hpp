@@ -28,6 +28,7 @@
 #include "swell/validation/io/frame_source.hpp"
 #include "swell/validation/checks/ocean_checks.hpp"
 #include "swell/validation/stats/periodogram.hpp"
+#include "swell/validation/stats/sample_moments.hpp"
 #include "swell/validation/stats/wave_fit.hpp"
 
 namespace swell::validation::ocean_analysis {
@@ -55,10 +56,50 @@ struct Wave {
   double tau_minus = 0;  // E|b|²: power travelling along −k
 };
 
+// The resolved wave vectors (Analysis::waves()): a view of the half plane's, in its order, held
+// as their positions in it — one copy of each Wave (80 B), not two.
+class ResolvedWaves {
+ public:
+  ResolvedWaves() = default;
+  ResolvedWaves(const std::vector<Wave>& half_plane, std::vector<std::size_t> positions)
+      : half_plane_(&half_plane), positions_(std::move(positions)) {}
+  std::size_t size() const { return positions_.size(); }
+  bool empty() const { return positions_.empty(); }
+  const Wave& operator[](std::size_t i) const { return (*half_plane_)[positions_[i]]; }
+
+  class const_iterator {
+   public:
+    using iterator_category = std::forward_iterator_tag;
+    using value_type = Wave;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const Wave*;
+    using reference = const Wave&;
+    const_iterator(const ResolvedWaves* waves, std::size_t i) : waves_(waves), i_(i) {}
+    const Wave& operator*() const { return (*waves_)[i_]; }
+    const Wave* operator->() const { return &(*waves_)[i_]; }
+    const_iterator& operator++() {
+      ++i_;
+      return *this;
+    }
+    bool operator==(const const_iterator& other) const { return i_ == other.i_; }
+
+   private:
+    const ResolvedWaves* waves_;
+    std::size_t i_;
+  };
+  const_iterator begin() const { return {this, 0}; }
+  const_iterator end() const { return {this, positions_.size()}; }
+
+ private:
+  const std::vector<Wave>* half_plane_ = nullptr;
+  std::vector<std::size_t> positions_;
+};
+
 // The travelling-wave amplitudes of one wave vector fitted over the frames:
 // h̃(k, t) ≈ a e^(−iωt) + b e^(+iωt).
 struct WaveFit {
   const Wave* wave = nullptr;
+  std::size_t position = 0;  // of the wave in Analysis::waves()
   Complex a, b;
   double energy = 0, residual = 0;  // Σf |h̃|², Σf |h̃ − fit|²
 };
@@ -91,22 +132,21 @@ double resolution_floor(double u, double mean_square_height, std::size_t count);
 // The distinct ω of a set of waves, for work that depends on ω alone (the phases e^(−iωt)):
 // the wave vectors of one |k| share it — on a square grid (n, m), (−n, m), (m, n), (−m, n) and
 // any other of the same n² + m² — so one per distinct ω is about a quarter as many as one per
-// wave vector. `order` lists the waves by ω (ties in their own order), wave i's ω is
-// omegas[group[i]].
+// wave vector. Wave i's ω is omegas[group[i]], the omegas ascending.
 struct OmegaGroups {
-  std::vector<std::size_t> order, group;
+  std::vector<std::size_t> group;
   std::vector<double> omegas;
 };
 
 template <typename Waves>
 OmegaGroups group_by_omega(const Waves& waves) {
   OmegaGroups out;
-  out.order.resize(waves.size());
-  std::iota(out.order.begin(), out.order.end(), std::size_t(0));
-  std::stable_sort(out.order.begin(), out.order.end(),
+  std::vector<std::size_t> order(waves.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t x, std::size_t y) { return waves[x].omega < waves[y].omega; });
   out.group.resize(waves.size());
-  for (std::size_t i : out.order) {
+  for (std::size_t i : order) {
     if (out.omegas.empty() || !(out.omegas.back() == waves[i].omega)) out.omegas.push_back(waves[i].omega);
     out.group[i] = out.omegas.size() - 1;
   }
@@ -176,7 +216,11 @@ struct DerivedFold {
   };
   std::vector<Field> present;
   std::vector<Judged> judged;              // judged[frame × present + field]
-  std::vector<double> kx_of, ky_of, k_of;  // per entry in FFT order, made once
+  // kx per column, ky per row (per entry on a lattice: ky_by_row false, one row), |k| per
+  // entry in FFT order; made once.
+  std::vector<double> kx_of, ky_of, k_of;
+  std::size_t rows = 0, columns = 0;
+  bool ky_by_row = false;
   void start(const Analysis& a);
   // Field `i` of `present` on frame f.
   void add(const Analysis& a, std::size_t f, std::size_t i, const reference::FieldFrame& frame,
@@ -185,7 +229,6 @@ struct DerivedFold {
 
   // The arrays one add() works in, kept for the next.
   struct Scratch {
-    std::vector<Complex> spectrum;
     std::vector<double> expected, dxx, dyy, dxy, unit;
   };
   Scratch& acquire();
@@ -204,13 +247,10 @@ struct FramePass {
   HermitianFold hermitian;
   ParsevalFold parseval;
   DerivedFold derived;
-  // Per resolved wave vector, the sums of fit_two_waves over the frames in frame order (the
-  // same additions, so the fit is the one of the whole series): Σ conj(e) y, Σ e y and Σ|y|².
-  std::vector<Complex> r1, r2;
-  std::vector<double> energy;
-  // Per distinct ω of the resolved waves (group_by_omega): Σ conj(e)², e = e^(−iωt).
+  // The distinct ω of the resolved waves (group_by_omega), whose phases e^(−iωt) the passes
+  // compute once per frame. The two-wave fit's sums per wave vector live in the pass alone:
+  // what the checks read of them is Analysis::wave_fits().
   OmegaGroups groups;
-  std::vector<Complex> s;
   // Each frame's ĥ at the resolved waves, on disk for the dispersion pass (≥ 3 frames;
   // series_spill.hpp); null or not ok() when it could not be written.
   std::shared_ptr<SeriesSpill> spill;
@@ -252,11 +292,13 @@ class Analysis {
   const std::vector<double>& times() const { return times_; }
   const std::vector<double>& mu() const { return shared_->mu; }
   const std::vector<Complex>& spectrum0() const { return shared_->spectrum0; }
-  const std::vector<double>& height0() const { return height0_; }  // frame 0's height
+  // Frame 0's height moments about 0 (statistics' skewness and kurtosis): the height itself is
+  // not kept.
+  const stats::SampleMoments<double>& height_moments0() const { return height_moments0_; }
   double periodogram0(std::size_t e) const { return std::norm(shared_->spectrum0[e]); }
   double mean_square0() const { return mean_square0_; }
   double floor() const { return floor_; }
-  const std::vector<Wave>& waves() const { return shared_->resolved; }
+  const ResolvedWaves& waves() const { return shared_->resolved; }
   const std::vector<Wave>& half_plane() const { return shared_->half_plane; }
   std::string subject() const { return c_.describe(); }
 
@@ -271,8 +313,8 @@ class Analysis {
   const std::vector<long double>& spectral_energies() const { return pass().spectral_energies; }
 
   // a and b per resolved wave vector whose two waves are identifiable from the frame times, in
-  // the order of the resolved waves, from the pass's sums; `residual` is filled by the
-  // dispersion pass.
+  // the order of the resolved waves, made by the pass from its sums; `residual` is filled by
+  // the dispersion pass.
   const std::vector<WaveFit>& wave_fits() const;
   // The second pass (DispersionPass), made once.
   const DispersionPass& dispersion_pass() const;
@@ -308,11 +350,12 @@ class Analysis {
   long double spectral_energy0_ = 0;
   int threads_ = 1;
   std::vector<double> times_;
-  std::vector<double> height0_;
+  stats::SampleMoments<double> height_moments0_;
   struct Shared {
     std::vector<double> mu, tau;
     std::vector<Complex> spectrum0;
-    std::vector<Wave> resolved, half_plane;
+    std::vector<Wave> half_plane;
+    ResolvedWaves resolved;  // of half_plane
     std::vector<std::size_t> stray;
   };
   std::shared_ptr<Shared> shared_ = std::make_shared<Shared>();
@@ -322,7 +365,7 @@ class Analysis {
   mutable std::string misdeclared_table_;
   mutable MeasuredLevel level_;
   mutable std::chrono::steady_clock::time_point last_progress_ = std::chrono::steady_clock::now();
-  mutable std::once_flag pass_once_, fits_once_, dispersion_once_, table_once_, level_once_;
+  mutable std::once_flag pass_once_, dispersion_once_, table_once_, level_once_;
 };
 
 // A failed check's explanation: the misdeclared table's reading where one explains the

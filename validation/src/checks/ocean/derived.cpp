@@ -268,18 +268,24 @@ void DerivedFold::start(const Analysis& a) {
   }
   judged.assign(a.frame_count() * present.size(), Judged{});
   if (present.empty()) return;
-  // kx, ky and |k| per entry, made once for the up to 14 derivations of each frame (hypot in
-  // each of their loops was a third of this check's time).
+  // kx, ky and |k| made once for the up to 14 derivations of each frame (hypot in each of their
+  // loops was a third of this check's time). On a grid kx depends on the column alone and ky on
+  // the row: held per column and per row, only |k| per entry.
   const Sampling& g = a.sampling();
   const std::size_t count = a.count();
-  kx_of.resize(count);
-  ky_of.resize(count);
+  ky_by_row = !g.is_lattice();
+  rows = ky_by_row ? std::size_t(g.grid().ny) : 1;
+  columns = count / rows;
+  kx_of.resize(columns);
+  ky_of.resize(ky_by_row ? rows : count);
   k_of.resize(count);
-  for (std::size_t e = 0; e < count; ++e) {
-    const auto [nn, mm] = g.wave_index(e);
-    kx_of[e] = nn * g.dkx();
-    ky_of[e] = mm * g.dky();
-    k_of[e] = std::hypot(kx_of[e], ky_of[e]);
+  for (std::size_t row = 0, e = 0; row < rows; ++row) {
+    for (std::size_t column = 0; column < columns; ++column, ++e) {
+      const auto [nn, mm] = g.wave_index(e);
+      kx_of[column] = nn * g.dkx();
+      ky_of[ky_by_row ? row : column] = mm * g.dky();
+      k_of[e] = std::hypot(kx_of[column], ky_of[ky_by_row ? row : column]);
+    }
   }
 }
 
@@ -298,18 +304,21 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t i, const
     Scratch& scratch;
     ~Release() { fold.release(scratch); }
   } release_on_exit{*this, scratch};
-  // The field λ's multiplier m makes of the height spectrum, into `into`.
+  // The field λ's multiplier m makes of the height spectrum, into `into`: written straight into
+  // the inverse transform's input, row by row (kx by column, ky by row on a grid).
   auto derive = [&](const auto& m, double& mean_m2, std::vector<double>& into) {
-    std::vector<Complex>& s = scratch.spectrum;
-    s.resize(spectrum.size());
     mean_m2 = 0;
-    for (std::size_t e = 0; e < spectrum.size(); ++e) {
-      const Complex mult = g.carries_energy(e) ? m(kx_of[e], ky_of[e], k_of[e]) : 0.0;
-      s[e] = mult * spectrum[e];
-      mean_m2 += std::norm(mult);
-    }
+    field_from_spectrum(g, [&](std::span<Complex> s) {
+      for (std::size_t row = 0, e = 0; row < rows; ++row) {
+        for (std::size_t column = 0; column < columns; ++column, ++e) {
+          const Complex mult =
+              g.carries_energy(e) ? m(kx_of[column], ky_of[ky_by_row ? row : column], k_of[e]) : 0.0;
+          s[e] = mult * spectrum[e];
+          mean_m2 += std::norm(mult);
+        }
+      }
+    }, into);
     mean_m2 /= double(spectrum.size());
-    field_from_spectrum(s, g, into);
   };
   auto jacobian_minus_one = [&](double l, double& mean_m2, double& products, std::vector<double>& out) {
     double m_xx = 0, m_yy = 0, m_xy = 0;

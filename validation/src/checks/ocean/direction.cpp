@@ -54,12 +54,15 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
     return {};
   }
   const double alpha = a.options().alpha / 2;
+  // Each fitted wave vector's two travelling waves, along +k then −k: made as they are visited
+  // (two per wave vector of the half plane, too many to hold at film scale).
   struct Entry { double theta, power, tau; };
-  std::vector<Entry> entries;
-  for (const WaveFit& f : fits) {
-    entries.push_back({f.wave->theta, std::norm(f.a), f.wave->tau_plus});
-    entries.push_back({f.wave->theta + kPi, std::norm(f.b), f.wave->tau_minus});
-  }
+  auto for_each_entry = [&](const auto& visit) {
+    for (const WaveFit& f : fits) {
+      visit(Entry{f.wave->theta, std::norm(f.a), f.wave->tau_plus});
+      visit(Entry{f.wave->theta + kPi, std::norm(f.b), f.wave->tau_minus});
+    }
+  };
   auto harmonics = [](double theta) {
     return std::array<double, 4>{std::cos(theta), std::sin(theta), std::cos(2 * theta), std::sin(2 * theta)};
   };
@@ -69,12 +72,12 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
   // waves above the rounding floor take part.
   std::array<double, 4> mean_g{};
   int used = 0;
-  for (const Entry& e : entries) {
-    if (!(e.tau >= a.floor())) continue;
+  for_each_entry([&](const Entry& e) {
+    if (!(e.tau >= a.floor())) return;
     const auto g = harmonics(e.theta);
     for (int i = 0; i < 4; ++i) mean_g[i] += g[i];
     ++used;
-  }
+  });
   for (double& v : mean_g) v /= std::max(used, 1);
   // u at the frames' measured level L (MeasuredLevel): a scale error alone makes u ~ L Exp(1),
   // whose (u − 1) would score a direction where there is none.
@@ -84,19 +87,19 @@ Results check_direction(const Analysis& a, OceanCheckReport& report) {
   std::array<std::array<double, 4>, 4> cov{};
   Complex measured_resultant = 0, expected_resultant = 0;
   double power_total = 0, tau_total = 0;
-  for (const Entry& e : entries) {
+  for_each_entry([&](const Entry& e) {
     measured_resultant += e.power * std::polar(1.0, e.theta);
     expected_resultant += e.tau * std::polar(1.0, e.theta);
     power_total += e.power;
     tau_total += e.tau;
-    if (!(e.tau >= a.floor())) continue;
+    if (!(e.tau >= a.floor())) return;
     auto g = harmonics(e.theta);
     for (int i = 0; i < 4; ++i) g[i] -= mean_g[i];
     for (int i = 0; i < 4; ++i) {
       d[i] += (e.power / (scale * e.tau) - 1) * g[i];
       for (int j = 0; j < 4; ++j) cov[i][j] += g[i] * g[j];
     }
-  }
+  });
   int rank = 0;
   const double t = quadratic_form<4>(cov, d, rank);
   const double p = rank > 0 ? stats::chi_squared_upper_p(t, rank) : 1.0;

@@ -48,6 +48,7 @@ Results check_energy(const Analysis& a, OceanCheckReport& report) {
     return {};
   }
   std::vector<double> weights;
+  weights.reserve(a.half_plane().size());
   for (const Wave& w : a.half_plane()) weights.push_back(2 * w.mu);
   const stats::WeightedExponentialSum law(weights);
   const double measured = a.mean_square0();

@@ -26,6 +26,7 @@ Results check_moments(const Analysis& a, OceanCheckReport& report) {
   // Hs = 4 √m0 with m0's exact law.
   if (!free) {
     std::vector<double> weights;
+    weights.reserve(a.half_plane().size());
     for (const Wave& w : a.half_plane()) weights.push_back(2 * w.mu);
     const stats::WeightedExponentialSum law(weights);
     const double lo = 4 * std::sqrt(law.quantile(alpha / 2)), hi = 4 * std::sqrt(law.quantile(1 - alpha / 2));

@@ -97,6 +97,7 @@ std::vector<ConventionProduct> convention_products(double dk) {
 
 MeasuredLevel measure_level(const Analysis& a) {
   std::vector<NormalizedOrdinate> ordinates;
+  ordinates.reserve(a.waves().size());
   for (const Wave& w : a.waves()) ordinates.push_back({w.k, a.periodogram0(w.index) / w.mu});
   const RingShape shape = ring_shape(std::move(ordinates));
   MeasuredLevel out;

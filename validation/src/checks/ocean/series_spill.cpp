@@ -30,12 +30,12 @@ void SeriesSpill::close() {
   fd_ = -1;
 }
 
-void SeriesSpill::write(std::size_t f, std::span<const std::complex<double>> values) {
+void SeriesSpill::write(std::size_t f, std::size_t first, std::span<const std::complex<double>> values) {
   if (fd_ < 0) return;
-  const std::size_t bytes = values_ * sizeof(std::complex<double>);
-  if (values.size() != values_) return close();
+  if (first > values_ || values.size() > values_ - first) return close();
+  const std::size_t bytes = values.size() * sizeof(std::complex<double>);
   const char* data = reinterpret_cast<const char*>(values.data());
-  off_t offset = off_t(f * bytes);
+  const off_t offset = off_t((f * values_ + first) * sizeof(std::complex<double>));
   for (std::size_t done = 0; done < bytes;) {
     const ssize_t n = ::pwrite(fd_, data + done, bytes - done, offset + off_t(done));
     if (n < 0 && errno == EINTR) continue;

@@ -22,8 +22,9 @@ class SeriesSpill {
   SeriesSpill& operator=(const SeriesSpill&) = delete;
 
   bool ok() const { return fd_ >= 0; }
-  // Frame f's values; a failed write closes the file (ok() is then false).
-  void write(std::size_t f, std::span<const std::complex<double>> values);
+  // Frame f's values from the `first`th on (a piece of the frame's); a failed write closes the
+  // file (ok() is then false).
+  void write(std::size_t f, std::size_t first, std::span<const std::complex<double>> values);
   // Frame f's values as written; false when the file cannot give them back.
   bool read(std::size_t f, std::span<std::complex<double>> values) const;
 

@@ -12,6 +12,8 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
   const double alpha = a.options().alpha / 2;
   std::vector<const Wave*> order;
   std::vector<NormalizedOrdinate> ordinates;
+  order.reserve(a.waves().size());
+  ordinates.reserve(a.waves().size());
   for (const Wave& w : a.waves()) {
     order.push_back(&w);
     ordinates.push_back({w.k, a.periodogram0(w.index) / w.mu});

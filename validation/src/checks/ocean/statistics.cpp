@@ -10,16 +10,17 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   Results out;
   const bool several_frames = a.times().size() >= 2;
   const double alpha = a.options().alpha / (several_frames ? 4 : 3);
-  const auto& h = a.height0();
   const double n = double(a.count());
 
   // Sample skewness and kurtosis of a Gaussian field on the torus: with covariance
   // C(d) = Σk μ(k) e^(ik·d), Var(mean h³) = (6/n) Σd C(d)³ and the kurtosis linearizes to
   // mean He4(h)/σ⁴ with Var = (24/n) Σd C(d)⁴ / σ⁸ (Isserlis; Σd C(d) = 0 as k = 0 is empty).
-  std::vector<Complex> mu_complex(a.mu().begin(), a.mu().end());
   // On a lattice the differences of sample points are lattice points again (x_n − x_n' =
   // x_(n−n')), so C over them is the lattice's own inverse transform of μ.
-  const auto covariance = field_from_spectrum(mu_complex, a.sampling());
+  std::vector<double> covariance;
+  field_from_spectrum(a.sampling(), [&](std::span<Complex> in) {
+    std::copy(a.mu().begin(), a.mu().end(), in.begin());
+  }, covariance);
   double sigma2 = covariance[0], c3 = 0, c4 = 0;
   for (double c : covariance) {
     c3 += c * c * c;
@@ -27,8 +28,7 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   }
   // About 0: the case's field has no mean (k = 0 carries no energy), and a mean the engine adds
   // is the energy check's to find.
-  stats::SampleMoments<double> moments;
-  moments.add(h, 0.0);
+  const stats::SampleMoments<double>& moments = a.height_moments0();
   const double skewness = moments.skewness();
   const double kurtosis = moments.excess_kurtosis();
   // Plus the rounding of the normalized moments (64 u log2 N, the dispersion check's bound): a
@@ -55,6 +55,7 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   // exponential law with its scale estimated (mean u), so that this part judges the shape of
   // the law only — an energy error is the energy check's to name.
   std::vector<double> u;
+  u.reserve(a.waves().size());
   double u_sum = 0;
   for (const Wave& w : a.waves()) {
     u.push_back(a.periodogram0(w.index) / w.mu);
@@ -62,6 +63,8 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   }
   const double u_mean = u_sum / double(u.size());
   std::vector<double> cdf, log_survival;
+  cdf.reserve(u.size());
+  log_survival.reserve(u.size());
   for (double x : u) {
     cdf.push_back(-std::expm1(-x / u_mean));
     log_survival.push_back(-x / u_mean);

@@ -75,8 +75,8 @@ std::vector<double> expected_travelling_power(const reference::OceanCase& ocean_
 // Groups of checks run concurrently on `threads` threads (the gate): every group judges one
 // analysis of `frames`, made once. Reports in the groups' order (with a free scale the first begins with the fitted
 // scale); the first group's error is thrown. `travelling_power`: τ(k) of the case on its samples
-// (expected_travelling_power(ocean_case, threads)), which the gate evaluates once before reading
-// for its sampling rule and hands to the analysis.
+// (expected_travelling_power(ocean_case, threads), and no other), which the gate evaluates once
+// before reading for its sampling rule and hands to the analysis.
 struct OceanCheckGroup {
   std::vector<std::string> checks;
 };

@@ -6,6 +6,7 @@
 // with, in one realization, I(k) exponentially distributed with mean μ(k) and independent
 // over a half plane of k (I(−k) = I(k)).
 #include <complex>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -56,11 +57,27 @@ std::span<const std::complex<double>> analysis_transform(const std::vector<doubl
                                                          const reference::Sampling& sampling,
                                                          long double* energy = nullptr);
 void release_analysis_scratch();
+// While one lives on a thread, that thread's scratch is kept however large: a pass over many
+// frames reuses it, where a fresh array costs its page faults and the kernel's zeroing every
+// frame (over 64 MiB, from 2048²). release_analysis_scratch() after the pass frees it; a pool
+// thread's goes with the thread.
+class KeepAnalysisScratch {
+ public:
+  KeepAnalysisScratch();
+  ~KeepAnalysisScratch();
+  KeepAnalysisScratch(const KeepAnalysisScratch&) = delete;
+  KeepAnalysisScratch& operator=(const KeepAnalysisScratch&) = delete;
+};
 std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
                                         const reference::Sampling& sampling);
 // The same into `field` (resized), reusing its memory: for loops over many frames.
 void field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
                          const reference::Sampling& sampling, std::vector<double>& field);
+// The same for a spectrum `fill` writes straight into the transform's input (all
+// sampling.size() entries, FFT order): no spectrum array of the caller's own.
+void field_from_spectrum(const reference::Sampling& sampling,
+                         const std::function<void(std::span<std::complex<double>>)>& fill,
+                         std::vector<double>& field);
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,
                                               const reference::Sampling& sampling, int threads = 1);
 std::vector<double> expected_periodogram(const std::vector<double>& travelling,
