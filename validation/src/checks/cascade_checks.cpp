@@ -13,6 +13,7 @@
 #include "common/parallel_tasks.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/moments.hpp"
+#include "swell/reference/phase.hpp"
 #include "swell/reference/sampling_validity.hpp"
 #include "swell/validation/stats/periodogram.hpp"
 #include "swell/validation/stats/statistics.hpp"
@@ -42,13 +43,15 @@ struct SurfaceSpectrum {
   double rounding_power = 0;      // rounding: the stray energy a right surface may show
 };
 
-SurfaceSpectrum surface_spectrum(const OceanCase& ocean, const reference::FrameSequence& frames,
-                                 const std::vector<Complex>& spectrum) {
+// `mu`: the case's μ(k) on its grid (expected_periodogram); `unit_roundoff`: the frames' stored
+// precision, as every frame showed it.
+SurfaceSpectrum surface_spectrum(const OceanCase& ocean, double unit_roundoff,
+                                 const std::vector<Complex>& spectrum, std::vector<double> mu) {
   SurfaceSpectrum s;
   s.grid = ocean.grid;
   s.power.resize(spectrum.size());
   for (std::size_t e = 0; e < spectrum.size(); ++e) s.power[e] = std::norm(spectrum[e]);
-  s.mu = expected_periodogram(*ocean.directional_spectrum(), ocean.grid);
+  s.mu = std::move(mu);
   s.mu_sea = expected_periodogram(*ocean.sea_spectrum(), ocean.grid);
   const auto& g = ocean.grid;
   s.k.resize(s.power.size());
@@ -66,7 +69,7 @@ SurfaceSpectrum surface_spectrum(const OceanCase& ocean, const reference::FrameS
   // As the spectrum check's stray energy: the field's own rounding (u per value, amplified by
   // log2 N through a transform) may all land where the case puts nothing.
   const double log2n = std::log2(double(g.nx) * g.ny);
-  s.rounding_power = std::pow(rounding_budget(kTransformRounding, frames.unit_roundoff, log2n), 2) * s.mean_square;
+  s.rounding_power = std::pow(rounding_budget(kTransformRounding, unit_roundoff, log2n), 2) * s.mean_square;
   return s;
 }
 
@@ -215,48 +218,10 @@ CheckResult missing_result(const std::string& name, const std::string& subject,
       reason);
 }
 
-// One frame's ĥ for every frame.
-std::vector<std::vector<Complex>> frame_spectra(const reference::FrameSequence& frames,
-                                                const Grid& grid) {
-  std::vector<std::vector<Complex>> out;
-  for (std::size_t f = 0; f < frames.frames.size(); ++f) {
-    out.push_back(field_spectrum(frames.field(int(f), Field::height), grid));
-  }
-  return out;
-}
+bool height_only(int, Field field) { return field == Field::height; }
 
-// The two-wave fit (wave_fit.hpp) of entry e over the frames' spectra; `residual` may be null.
-bool fit_entry(const std::vector<std::vector<Complex>>& spectra, const std::vector<double>& t,
-               std::size_t e, double omega, Complex& a, Complex& b, double* residual) {
-  thread_local std::vector<Complex> y;
-  y.resize(spectra.size());
-  for (std::size_t f = 0; f < spectra.size(); ++f) y[f] = spectra[f][e];
-  double left = 0;
-  if (!fit_two_waves(omega, t, y, a, b, left)) return false;
-  if (residual) *residual = left;
-  return true;
-}
-
-// What the set checks need of one cascade, computed once: ĥ of every frame, the frame times,
-// and frame 0's spectral view.
-struct CascadeAnalysis {
-  int index = 0;
-  const OceanCase* ocean = nullptr;
-  const reference::FrameSequence* frames = nullptr;
-  std::vector<std::vector<Complex>> spectra;
-  std::vector<double> t;
-  SurfaceSpectrum s;
-};
-
-CascadeAnalysis analyse(const CascadeView& view) {
-  CascadeAnalysis a;
-  a.index = view.index;
-  a.ocean = view.ocean;
-  a.frames = view.frames;
-  a.spectra = frame_spectra(*view.frames, view.ocean->grid);
-  for (const auto& frame : view.frames->frames) a.t.push_back(frame.time);
-  a.s = surface_spectrum(*view.ocean, *view.frames, a.spectra.front());
-  return a;
+const std::vector<double>& height_of(const reference::FieldFrame& frame) {
+  return frame.fields.at(Field::height);
 }
 
 // The initial amplitudes h̃0(k) of a surface recovered from its frames' heights (grid order):
@@ -272,35 +237,178 @@ struct RecoveredAmplitudes {
   bool usable = true;
   std::string reason;
 };
-RecoveredAmplitudes recover(const OceanCase& ocean, const std::vector<std::vector<Complex>>& spectra,
-                            const std::vector<double>& t) {
-  RecoveredAmplitudes out;
-  const auto& g = ocean.grid;
+
+// The sums of the two-wave fit (wave_fit.hpp) of a set of entries over the frames, added to
+// frame by frame in frame order: those fit_two_waves makes of a whole series, bit for bit.
+struct TwoWaveSums {
+  std::vector<std::size_t> entries;  // grid order
+  std::vector<double> omega;         // per entry
+  std::vector<Complex> s, r1, r2;    // Σ conj(e)², Σ conj(e) y, Σ e y, e = e^(−iωt)
+  void start() {
+    s.assign(entries.size(), 0.0);
+    r1.assign(entries.size(), 0.0);
+    r2.assign(entries.size(), 0.0);
+  }
+  void add(double t, const std::vector<Complex>& spectrum) {
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      const Complex e = reference::unit_phasor(-reference::reduced_phase(omega[i], t));
+      const Complex y = spectrum[entries[i]];
+      s[i] += std::conj(e) * std::conj(e);
+      r1[i] += std::conj(e) * y;
+      r2[i] += e * y;
+    }
+  }
+};
+
+// The patch check's fit of one cascade's frames with ω(k) from a patch length (lx, ly), k =
+// 2π (n, m)/L, over the half plane's entries the case fills above rounding: Σ over them of the
+// fit's residual (of |ĥ|² where the fit is degenerate), and of |ĥ|².
+struct PatchFit {
+  double lx = 0, ly = 0;
+  TwoWaveSums sums;
+  std::vector<Complex> a, b;
+  std::vector<char> fitted;
+  std::vector<double> residual;  // per entry, Σf |ĥ − a e − b conj e|²
+  double left = 0, total = 0;
+};
+
+// What the set checks need of one cascade, gathered by streaming its frames: frame 0's
+// spectral view, the amplitudes recovered from every frame (one pass), and, with three frames
+// or more, the patch check's fits for every patch length of the set (their residuals: a second
+// pass).
+struct CascadeAnalysis {
+  int index = 0;
+  const OceanCase* ocean = nullptr;
+  const FrameSource* frames = nullptr;
+  std::size_t frame_count = 0;
+  std::vector<double> t;
+  SurfaceSpectrum s;
+  RecoveredAmplitudes recovered;
+  std::vector<PatchFit> patch;  // its own patch length first
+};
+
+// The spectrum of frame f's height, as field_spectrum makes it, into `spectrum`.
+void height_spectrum(const reference::FieldFrame& frame, const Grid& grid, std::vector<Complex>& spectrum) {
+  field_spectrum(height_of(frame), reference::Sampling(grid), spectrum);
+}
+
+// `patch_lengths`: every cascade's (lx, ly) in the set.
+CascadeAnalysis analyse(const CascadeView& view, const std::vector<std::pair<double, double>>& patch_lengths) {
+  CascadeAnalysis a;
+  a.index = view.index;
+  a.ocean = view.ocean;
+  a.frames = view.frames;
+  const FrameSource& source = *view.frames;
+  const OceanCase& ocean = *view.ocean;
+  const Grid& g = ocean.grid;
+  a.frame_count = source.size();
+  for (std::size_t f = 0; f < a.frame_count; ++f) a.t.push_back(source.time(f));
   const std::size_t count = std::size_t(g.nx) * g.ny;
+  std::vector<double> mu = expected_periodogram(*ocean.directional_spectrum(), g);
+
+  // The recovery's fit at the case's ω(k), on every entry the grid fills (two frames or more).
+  TwoWaveSums recovery;
+  if (a.frame_count >= 2) {
+    for (std::size_t e = 0; e < count; ++e) {
+      if (!carries(g, e)) continue;
+      const int n = Grid::signed_index(int(e % g.nx), g.nx), m = Grid::signed_index(int(e / g.nx), g.ny);
+      recovery.entries.push_back(e);
+      recovery.omega.push_back(ocean.omega(std::hypot(n * g.dkx(), m * g.dky())));
+    }
+    recovery.start();
+  }
+  // The patch check's fits (three frames or more), on the half plane's filled entries with
+  // μ > 0; those below the rounding floor, known once every frame's precision is, are left out
+  // at the end.
+  if (a.frame_count >= 3) {
+    std::vector<std::pair<double, double>> lengths = {{g.lx, g.ly}};
+    for (const auto& length : patch_lengths) {
+      if (std::find(lengths.begin(), lengths.end(), length) == lengths.end()) lengths.push_back(length);
+    }
+    for (const auto& [lx, ly] : lengths) {
+      PatchFit fit;
+      fit.lx = lx;
+      fit.ly = ly;
+      for (std::size_t e = 0; e < count; ++e) {
+        if (!carries(g, e) || !half_plane(g, e) || !(mu[e] > 0)) continue;
+        const int n = Grid::signed_index(int(e % g.nx), g.nx), m = Grid::signed_index(int(e / g.nx), g.ny);
+        fit.sums.entries.push_back(e);
+        fit.sums.omega.push_back(ocean.omega(std::hypot(2 * M_PI * n / lx, 2 * M_PI * m / ly)));
+      }
+      fit.sums.start();
+      a.patch.push_back(std::move(fit));
+    }
+  }
+  std::vector<Complex> spectrum0, spectrum;
+  source.stream(height_only, [&](std::size_t f, const reference::FieldFrame& frame) {
+    height_spectrum(frame, g, spectrum);
+    if (f == 0) spectrum0 = spectrum;
+    if (!recovery.entries.empty()) recovery.add(a.t[f], spectrum);
+    for (PatchFit& fit : a.patch) fit.sums.add(a.t[f], spectrum);
+  });
+  a.s = surface_spectrum(ocean, source.precision().unit_roundoff, spectrum0, std::move(mu));
+
+  RecoveredAmplitudes& out = a.recovered;
   out.a.assign(count, 0.0);
   out.valid.assign(count, 0);
-  if (t.size() == 1) {
-    if (t[0] != 0) {
+  if (a.frame_count == 1) {
+    if (a.t[0] != 0) {
       out.usable = false;
       out.reason = "one frame at t ≠ 0 cannot tell h̃0(k) from conj h̃0(−k)";
-      return out;
-    }
-    out.mixed = true;
-    out.a = spectra.front();
-    for (std::size_t e = 0; e < count; ++e) out.valid[e] = carries(g, e);
-    return out;
-  }
-  for (std::size_t e = 0; e < count; ++e) {
-    if (!carries(g, e)) continue;
-    const int n = Grid::signed_index(int(e % g.nx), g.nx), m = Grid::signed_index(int(e / g.nx), g.ny);
-    const double omega = ocean.omega(std::hypot(n * g.dkx(), m * g.dky()));
-    Complex a, b;
-    if (fit_entry(spectra, t, e, omega, a, b, nullptr)) {
-      out.a[e] = a;
-      out.valid[e] = 1;
+    } else {
+      out.mixed = true;
+      out.a = spectrum0;
+      for (std::size_t e = 0; e < count; ++e) out.valid[e] = carries(g, e);
     }
   }
-  return out;
+  const double frames = double(a.frame_count);
+  for (std::size_t i = 0; i < recovery.entries.size(); ++i) {
+    Complex amplitude, b;
+    if (solve_two_waves(frames, recovery.s[i], recovery.r1[i], recovery.r2[i], amplitude, b)) {
+      out.a[recovery.entries[i]] = amplitude;
+      out.valid[recovery.entries[i]] = 1;
+    }
+  }
+  if (a.patch.empty()) return a;
+
+  // The second pass: each patch length's residuals, entry by entry in frame order.
+  std::vector<double> energy(a.patch.front().sums.entries.size(), 0.0);  // Σf |ĥ|² per entry
+  for (PatchFit& fit : a.patch) {
+    const std::size_t n = fit.sums.entries.size();
+    fit.a.assign(n, 0.0);
+    fit.b.assign(n, 0.0);
+    fit.fitted.assign(n, 0);
+    fit.residual.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      fit.fitted[i] = solve_two_waves(frames, fit.sums.s[i], fit.sums.r1[i], fit.sums.r2[i], fit.a[i], fit.b[i]);
+    }
+  }
+  source.stream(height_only, [&](std::size_t f, const reference::FieldFrame& frame) {
+    height_spectrum(frame, g, spectrum);
+    const auto& entries = a.patch.front().sums.entries;
+    for (std::size_t i = 0; i < entries.size(); ++i) energy[i] += std::norm(spectrum[entries[i]]);
+    for (PatchFit& fit : a.patch) {
+      for (std::size_t i = 0; i < entries.size(); ++i) {
+        if (!fit.fitted[i]) continue;
+        const Complex e = reference::unit_phasor(-reference::reduced_phase(fit.sums.omega[i], a.t[f]));
+        fit.residual[i] += std::norm(spectrum[entries[i]] - fit.a[i] * e - fit.b[i] * std::conj(e));
+      }
+    }
+  });
+  const double per_entry_rounding = a.s.rounding_power / double(a.s.power.size());
+  for (PatchFit& fit : a.patch) {
+    const auto& entries = fit.sums.entries;
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      if (!(a.s.mu[entries[i]] > 1e4 * per_entry_rounding)) continue;
+      fit.total += energy[i];
+      fit.left += fit.fitted[i] ? fit.residual[i] : energy[i];
+    }
+    fit.sums = {};
+    fit.a = {};
+    fit.b = {};
+    fit.residual = {};
+  }
+  return a;
 }
 
 std::vector<CheckResult> band_checks(const CascadeAnalysis& analysis,
@@ -317,10 +425,12 @@ CheckResult nested_check(const std::vector<CascadeAnalysis>& cascades);
 CascadeSetResults run_cascade_set_checks(const std::vector<CascadeView>& cascades,
                                          const std::vector<reference::CascadeMember>& members,
                                          const CascadeSetOptions& options) {
-  // One analysis per cascade, on the gate's threads.
+  // One analysis per cascade, on the gate's threads, each streaming its cascade's frames.
+  std::vector<std::pair<double, double>> patch_lengths;
+  for (const auto& view : cascades) patch_lengths.emplace_back(view.ocean->grid.lx, view.ocean->grid.ly);
   std::vector<CascadeAnalysis> analyses(cascades.size());
   detail::run_tasks(cascades.size(), options.threads,
-                    [&](std::size_t c) { analyses[c] = analyse(cascades[c]); });
+                    [&](std::size_t c) { analyses[c] = analyse(cascades[c], patch_lengths); });
   CascadeSetResults out;
   if (reference::is_summed(options.relation)) {
     for (const auto& a : analyses) out.bands.push_back(band_checks(a, members, options.alpha_per_check));
@@ -523,7 +633,7 @@ CheckResult independence_check(const std::vector<CascadeAnalysis>& cascades, dou
   std::vector<Normalized> normalized;
   std::string unusable;
   for (const auto& c : cascades) {
-    const auto recovered = recover(*c.ocean, c.spectra, c.t);
+    const RecoveredAmplitudes& recovered = c.recovered;
     Normalized out;
     out.mixed = recovered.mixed;
     if (!recovered.usable) {
@@ -608,30 +718,14 @@ CheckResult patch_check(const std::vector<CascadeAnalysis>& cascades) {
   double worst_ratio = 1;
   std::string reason;
   for (const auto& c : cascades) {
-    const auto& frames = *c.frames;
-    if (frames.frames.size() < 3) continue;
+    if (c.patch.empty()) continue;  // fewer than three frames
     const auto& g = c.ocean->grid;
-    const auto& spectra = c.spectra;
-    const auto& t = c.t;
-    const SurfaceSpectrum& s = c.s;
-    const double per_entry_rounding = s.rounding_power / double(s.power.size());
-    // The fit residual with ω from a patch length L: k = 2π (n, m)/L.
+    // The fit residual with ω from a patch length L (k = 2π (n, m)/L), relative to the energy.
     auto residual = [&](double lx, double ly) {
-      double left = 0, total = 0;
-      for (std::size_t e = 0; e < s.power.size(); ++e) {
-        if (!carries(g, e) || !half_plane(g, e) || !(s.mu[e] > 1e4 * per_entry_rounding)) continue;
-        const int n = Grid::signed_index(int(e % g.nx), g.nx), m = Grid::signed_index(int(e / g.nx), g.ny);
-        const double omega = c.ocean->omega(std::hypot(2 * M_PI * n / lx, 2 * M_PI * m / ly));
-        Complex a, b;
-        double r = 0;
-        for (const auto& spectrum : spectra) total += std::norm(spectrum[e]);
-        if (fit_entry(spectra, t, e, omega, a, b, &r)) {
-          left += r;
-        } else {
-          for (const auto& spectrum : spectra) left += std::norm(spectrum[e]);
-        }
+      for (const PatchFit& fit : c.patch) {
+        if (fit.lx == lx && fit.ly == ly) return fit.total > 0 ? fit.left / fit.total : 0.0;
       }
-      return total > 0 ? left / total : 0.0;
+      throw InternalError("patch_check: a patch length the cascade's analysis did not fit");
     };
     const double own = residual(g.lx, g.ly);
     for (const auto& d : cascades) {
@@ -670,43 +764,59 @@ CheckResult nested_check(const std::vector<CascadeAnalysis>& cascades) {
     if (double(g.nx) * g.ny > double(b.nx) * b.ny) broad = c;
   }
   const auto& bg = cascades[broad].ocean->grid;
-  const auto& bframes = *cascades[broad].frames;
+  const FrameSource& bframes = *cascades[broad].frames;
+  // Per coarse cascade, its frames against the broad band's, frame by frame: the broad band's
+  // streamed once, each coarse cascade's frame f read beside it.
+  struct Sums {
+    Complex cross = 0;
+    double low_power = 0, broad_power = 0, difference = 0, rounding_power = 0;
+  };
+  std::vector<Sums> sums(cascades.size());
+  std::vector<std::size_t> compared;
+  for (std::size_t c = 0; c < cascades.size(); ++c) {
+    if (c != broad && cascades[c].frame_count == cascades[broad].frame_count) compared.push_back(c);
+  }
+  if (!compared.empty()) {
+    std::vector<Complex> wide, low;
+    bframes.stream(height_only, [&](std::size_t f, const reference::FieldFrame& frame) {
+      height_spectrum(frame, bg, wide);
+      for (std::size_t c : compared) {
+        const auto& lg = cascades[c].ocean->grid;
+        const FrameSource& lframes = *cascades[c].frames;
+        height_spectrum(*lframes.frame(f, height_only), lg, low);
+        Sums& sum = sums[c];
+        double low_mean_square = 0, wide_mean_square = 0;
+        for (const auto& x : low) low_mean_square += std::norm(x);
+        for (const auto& x : wide) wide_mean_square += std::norm(x);
+        const double u = std::max(lframes.precision().unit_roundoff, bframes.precision().unit_roundoff);
+        sum.rounding_power += std::pow(rounding_budget(kTransformRounding, u, std::log2(double(bg.nx) * bg.ny)), 2) *
+                              (low_mean_square + wide_mean_square);
+        for (std::size_t e = 0; e < low.size(); ++e) {
+          const int n = Grid::signed_index(int(e % lg.nx), lg.nx), m = Grid::signed_index(int(e / lg.nx), lg.ny);
+          if (!lg.carries_energy(n, m)) continue;
+          const std::size_t be = std::size_t((m + bg.ny) % bg.ny) * bg.nx + std::size_t((n + bg.nx) % bg.nx);
+          sum.cross += low[e] * std::conj(wide[be]);
+          sum.low_power += std::norm(low[e]);
+          sum.broad_power += std::norm(wide[be]);
+          sum.difference += std::norm(low[e] - wide[be]);
+        }
+      }
+    });
+  }
   double worst = 0, worst_bound = 0;
   std::string reason;
   bool ok = true;
   for (std::size_t c = 0; c < cascades.size(); ++c) {
     if (c == broad) continue;
-    const auto& lg = cascades[c].ocean->grid;
-    const auto& lframes = *cascades[c].frames;
-    if (lframes.frames.size() != bframes.frames.size()) {
+    if (cascades[c].frame_count != cascades[broad].frame_count) {
       ok = false;
       reason = fmt::format("cascade {} has {} frames and the broad band (cascade {}) {}: nested "
                            "bands are two samplings of the same frames",
-                           cascades[c].index, lframes.frames.size(), cascades[broad].index,
-                           bframes.frames.size());
+                           cascades[c].index, cascades[c].frame_count, cascades[broad].index,
+                           cascades[broad].frame_count);
       continue;
     }
-    Complex cross = 0;
-    double low_power = 0, broad_power = 0, difference = 0, rounding_power = 0;
-    for (std::size_t f = 0; f < lframes.frames.size(); ++f) {
-      const auto& low = cascades[c].spectra[f];
-      const auto& wide = cascades[broad].spectra[f];
-      double low_mean_square = 0, wide_mean_square = 0;
-      for (const auto& x : low) low_mean_square += std::norm(x);
-      for (const auto& x : wide) wide_mean_square += std::norm(x);
-      const double u = std::max(lframes.unit_roundoff, bframes.unit_roundoff);
-      rounding_power += std::pow(rounding_budget(kTransformRounding, u, std::log2(double(bg.nx) * bg.ny)), 2) *
-               (low_mean_square + wide_mean_square);
-      for (std::size_t e = 0; e < low.size(); ++e) {
-        const int n = Grid::signed_index(int(e % lg.nx), lg.nx), m = Grid::signed_index(int(e / lg.nx), lg.ny);
-        if (!lg.carries_energy(n, m)) continue;
-        const std::size_t be = std::size_t((m + bg.ny) % bg.ny) * bg.nx + std::size_t((n + bg.nx) % bg.nx);
-        cross += low[e] * std::conj(wide[be]);
-        low_power += std::norm(low[e]);
-        broad_power += std::norm(wide[be]);
-        difference += std::norm(low[e] - wide[be]);
-      }
-    }
+    const auto [cross, low_power, broad_power, difference, rounding_power] = sums[c];
     const double relative = broad_power > 0 ? std::sqrt(difference / broad_power) : 0;
     const double bound = broad_power > 0 ? std::sqrt(rounding_power / broad_power) : 0;
     if (relative > worst) {
@@ -789,10 +899,11 @@ CheckResult check_band_sharing(const OceanCase& sea,
       reason);
 }
 
-std::vector<CheckResult> check_summed_bands(const OceanCase& summed,
-                                            const reference::FrameSequence& frames, double alpha) {
-  const SurfaceSpectrum s =
-      surface_spectrum(summed, frames, field_spectrum(frames.field(0, Field::height), summed.grid));
+std::vector<CheckResult> check_summed_bands(const OceanCase& summed, const FrameSource& frames, double alpha) {
+  std::vector<Complex> spectrum0;
+  height_spectrum(*frames.frame(0, height_only), summed.grid, spectrum0);
+  const SurfaceSpectrum s = surface_spectrum(summed, frames.precision().unit_roundoff, spectrum0,
+                                             expected_periodogram(*summed.directional_spectrum(), summed.grid));
   const auto& g = s.grid;
   const std::string subject = fmt::format("sum of {} cascades: {}×{} over {:g}×{:g} m",
                                           summed.members.size(), g.nx, g.ny, g.lx, g.ly);

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <memory>
 #include <optional>
 
 #include "gate/judge.hpp"
@@ -19,18 +20,18 @@ using namespace gate_path;
 
 namespace {
 
-// The surfaces of a set that have frames: each cascade's (an empty sequence when the case gives
-// none) and the sum's (null when none).
+// The surfaces of a set that have frames: each cascade's (null when the case gives none) and
+// the sum's (null when none). Every surface streams its frames (io/frame_source.hpp).
 GateReport judge_cascades(const CaseFile& case_file,
-                          const std::vector<reference::FrameSequence>& cascades,
-                          const reference::FrameSequence* sum,
+                          const std::vector<const FrameSource*>& cascades,
+                          const FrameSource* sum,
                           const GateOptions& options,
                           Clock::time_point start) {
   options.validate();
   const bool summed_set = reference::is_summed(case_file.relation);
   std::vector<std::size_t> given;
   for (std::size_t c = 0; c < cascades.size(); ++c) {
-    if (!cascades[c].frames.empty()) given.push_back(c);
+    if (cascades[c]) given.push_back(c);
   }
   std::optional<reference::OceanCase> summed;
   if (sum) {
@@ -48,12 +49,12 @@ GateReport judge_cascades(const CaseFile& case_file,
   const bool free = case_file.scale == SpectrumScale::free;
   int statistical = 0;
   for (auto c : given) {
-    statistical += statistical_check_count(case_file.scale, cascades[c].frames.size());
+    statistical += statistical_check_count(case_file.scale, cascades[c]->size());
     if (summed_set) ++statistical;
   }
   const bool set_checks = given.size() >= 2;
   if (set_checks && summed_set) statistical += free ? 1 : 2;
-  if (sum) statistical += statistical_check_count(case_file.scale, sum->frames.size()) + 1;
+  if (sum) statistical += statistical_check_count(case_file.scale, sum->size()) + 1;
   const double alpha_per_check = options.alpha / double(std::max(1, statistical));
 
   GateReport report;
@@ -66,7 +67,7 @@ GateReport judge_cascades(const CaseFile& case_file,
   // Judges one surface; its results, named "<name>.<check>", are returned for the caller to
   // place, its skipped checks go to the report.
   auto judge_surface = [&](const std::string& name, const CaseFile& surface,
-                           const reference::FrameSequence& frames) {
+                           const FrameSource& frames) {
     options.report_progress(fmt::format("judging {}…", name));
     GateReport part = judge(surface, frames,
                             expected_travelling_power(surface.ocean, options.resolved_threads()),
@@ -101,8 +102,8 @@ GateReport judge_cascades(const CaseFile& case_file,
   for (auto c : given) {
     const std::string name = fmt::format("cascade{}", c);
     ordinary[c] = judge_surface(name, surface_case_file(case_file, oceans[c], case_file.cascades[c].input),
-                                cascades[c]);
-    views.push_back({int(c), &oceans[c], &cascades[c]});
+                                *cascades[c]);
+    views.push_back({int(c), &oceans[c], cascades[c]});
   }
   CascadeSetResults set_results;
   if (!views.empty()) {
@@ -149,7 +150,16 @@ GateReport run_cascade_gate(const CaseFile& case_file,
     throw InvalidInput(fmt::format("the set has {} cascades; frames were given for {}",
                                    case_file.cascades.size(), cascades.size()));
   }
-  return judge_cascades(case_file, cascades, sum, options, Clock::now());
+  std::vector<std::unique_ptr<MemoryFrameSource>> sources;
+  std::vector<const FrameSource*> given(cascades.size(), nullptr);
+  for (std::size_t c = 0; c < cascades.size(); ++c) {
+    if (cascades[c].frames.empty()) continue;
+    sources.push_back(std::make_unique<MemoryFrameSource>(cascades[c]));
+    given[c] = sources.back().get();
+  }
+  std::optional<MemoryFrameSource> summed;
+  if (sum) summed.emplace(*sum);
+  return judge_cascades(case_file, given, summed ? &*summed : nullptr, options, Clock::now());
 }
 
 namespace gate_path {
@@ -161,32 +171,36 @@ GateReport read_and_judge_cascades(const CaseFile& case_file, const GateOptions&
     throw InvalidInput("--input replaces a single surface's [input] files; a cascade set names "
                        "each cascade's frames in its [[cascade]] table and the sum's in [sum]");
   }
-  std::vector<reference::FrameSequence> all(case_file.cascades.size());
-  auto read_surface = [&](const reference::OceanCase& ocean, const InputSpec& input,
-                          reference::FrameSequence& frames) {
+  // Each surface's memory (its analysis, judged one surface at a time) and the set checks'
+  // sums over every cascade's wave vectors, whatever the frame counts; then each surface's
+  // files, opened to stream (frame 0 read now, the rest as they are judged).
+  require_cascade_set_memory(case_file, threads);
+  std::vector<std::unique_ptr<FileFrameSource>> sources;
+  std::vector<const FrameSource*> all(case_file.cascades.size(), nullptr);
+  auto open_surface = [&](const reference::OceanCase& ocean, const InputSpec& input) {
     const CaseFile surface = surface_case_file(case_file, ocean, input);
-    require_gate_memory(ocean, input.channels.size(), threads);
-    const auto sampling = ocean.sampling();
+    require_streamed_gate_memory(ocean, input.channels.size(), threads);
     reference::require_valid_sampling(ocean, reference::kFloat64);
-    options.report_progress(fmt::format("reading {} frame{} on a {}…", ocean.frames,
-                                       ocean.frames == 1 ? "" : "s", sampling.describe()));
-    frames = read_gate_frames(surface, "", threads);
+    sources.push_back(std::make_unique<FileFrameSource>(surface, ""));
+    return sources.back().get();
   };
   for (std::size_t c = 0; c < case_file.cascades.size(); ++c) {
     if (case_file.cascades[c].input.files.empty()) continue;
-    read_surface(case_file.cascade_case(c), case_file.cascades[c].input, all[c]);
+    all[c] = open_surface(case_file.cascade_case(c), case_file.cascades[c].input);
   }
-  reference::FrameSequence sum;
-  const bool has_sum = !case_file.sum.files.empty();
-  if (has_sum) {
+  const FrameSource* sum = nullptr;
+  if (!case_file.sum.files.empty()) {
     std::string why;
     const auto summed = case_file.summed_case(&why);
     if (!summed) throw InvalidInput("[sum]: the cascades cannot be summed on one grid: " + why);
-    read_surface(*summed, case_file.sum, sum);
+    sum = open_surface(*summed, case_file.sum);
   }
-  const double reading = seconds_since(start);
-  GateReport report = judge_cascades(case_file, all, has_sum ? &sum : nullptr, options, start);
+  options.report_progress(fmt::format("reading and judging {} surface{}, one frame at a time…",
+                                      sources.size(), sources.size() == 1 ? "" : "s"));
+  GateReport report = judge_cascades(case_file, all, sum, options, start);
   report.case_path = case_file.origin.string();
+  double reading = 0;
+  for (const auto& source : sources) reading += source->reading_seconds();
   report.read_seconds = reading;
   return report;
 }

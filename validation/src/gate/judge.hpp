@@ -23,18 +23,13 @@ double seconds_since(Clock::time_point start);
 // each at its share of α.
 int statistical_check_count(SpectrumScale scale, std::size_t frames);
 
-// Throws InvalidInput (naming swell gate and the frames) when reading `ocean`'s frames on
-// `threads` threads needs more memory than the machine has; called before anything of the
-// grid's size is read.
-void require_gate_memory(const reference::OceanCase& ocean, std::size_t fields, int threads);
-// The same for one surface streamed through the analysis (run_gate.cpp): what it needs does not
-// depend on the frame count; the message names the figure and what to reduce.
+// Throws InvalidInput, naming the figure and what to reduce, when one surface streamed through
+// the analysis (run_gate.cpp) needs more memory than the machine has available. What it needs
+// does not depend on the frame count; called before anything of the grid's size is read.
 void require_streamed_gate_memory(const reference::OceanCase& ocean, std::size_t fields, int threads);
-
-// Every field of every frame of a surface, read and checked (size, finite values): `derived`
-// judges each field on every frame, since a fault can live in some frames only.
-reference::FrameSequence read_gate_frames(const CaseFile& case_file,
-                                          const std::string& pattern_override, int threads);
+// The same for a cascade set's set checks (cascade_checks.hpp): their sums per wave vector of
+// every cascade at once, beside the largest surface's analysis.
+void require_cascade_set_memory(const CaseFile& set, int threads);
 
 // A cascade's (or the sum's) own case file: its case, its frames' input, the set's scale.
 CaseFile surface_case_file(const CaseFile& set, const reference::OceanCase& ocean,

@@ -1,10 +1,12 @@
-// Reading a surface's frames for the gate: the memory asked for first, then what the checks
-// keep of every field of every frame.
+// What the gate asks of the machine before it reads any frame (memory, per surface and per
+// cascade set), and a cascade's own case file.
 #include "gate/judge.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <utility>
+#include <vector>
 #include <cstdint>
 
 #include "swell/reference/errors.hpp"
@@ -15,45 +17,70 @@ namespace swell::validation::gate_path {
 
 using reference::Field;
 
-void require_gate_memory(const reference::OceanCase& ocean, std::size_t ocean_fields, int threads) {
-  // Per sample: every frame's fields (8 bytes each, up to six) and its two complex waves in the
-  // dispersion fit (16), the analysis' spectra and expected powers (64), one frame of float
-  // channels being decoded per reading thread (24), and the derived check's spectra and fields
-  // of one frame per thread (96). A cascade set's surfaces are held whole (cascade_gate.cpp).
-  const auto sampling = ocean.sampling();
+namespace {
+
+double streamed_bytes_per_sample(std::size_t ocean_fields, int threads) {
+  // Per sample, whatever the frame count: the analysis — μ and τ (16 bytes), frame 0's spectrum
+  // (16), the half plane's wave vectors (40) and the resolved ones' positions among them (4),
+  // their fit sums and ω groups (24), the pass's spectrum (16) and the derived check's |k| (8);
+  // per thread its transform scratch (32) and a derived field (8); and per field two frames'
+  // values (8 bytes each: the one judged and the one read ahead) and the float channels being
+  // decoded (4). Measured: within 3 % of the heap's peak at 2048² (docs/gate.md §6).
   const double fields = double(std::max<std::size_t>(1, ocean_fields));
-  const double per_sample = (8.0 * fields + 16) * ocean.frames + 64 + (24.0 + 96) * threads;
-  const double bytes = double(sampling.size()) * per_sample;
-  reference::require_memory(std::uint64_t(std::min(bytes, 1.8e19)), "swell gate",
-                            fmt::format("{} frame{} on a {}", ocean.frames,
-                                        ocean.frames == 1 ? "" : "s", sampling.describe()));
+  return 16 + 16 + 40 + 4 + 24 + 16 + 8 + (32.0 + 8) * threads + (2 * 8.0 + 4) * fields;
 }
 
+}  // namespace
+
 void require_streamed_gate_memory(const reference::OceanCase& ocean, std::size_t ocean_fields, int threads) {
-  // Per sample, whatever the frame count: the analysis — μ and τ (16 bytes), frame 0's spectrum
-  // and height (24), the half plane's wave vectors twice, all and resolved (80), their fit sums
-  // and fits (48), the pass's spectrum and each thread's transform scratch (16 + 16 per thread),
-  // the derived check's wave numbers (24) and its spectra and fields of one field per thread
-  // (64) — and three frames' fields (8 bytes each): the one judged, the one read ahead, and
-  // frame 0's until the pass passes it.
   const auto sampling = ocean.sampling();
   const double fields = double(std::max<std::size_t>(1, ocean_fields));
-  const double per_sample = 16 + 24 + 80 + 48 + 16 + 24 + (16.0 + 64) * threads + 3 * 8.0 * fields;
+  const double per_sample = streamed_bytes_per_sample(ocean_fields, threads);
   const double bytes = double(sampling.size()) * per_sample;
   const std::uint64_t available = reference::available_memory_bytes();
   if (available == 0 || bytes <= double(available)) return;
   throw InvalidInput(fmt::format(
       "swell gate needs about {} for the analysis of the {} ({} bytes per sample: the "
-      "accumulators per wave vector, the spectra and three frames of {} field{}), whatever the "
+      "accumulators per wave vector, the spectra and two frames of {} field{}), whatever the "
       "frame count, and the machine has {} available: use a smaller grid ([grid] n), fewer "
       "fields ([input]) or fewer threads (--threads {})",
       reference::human_bytes(bytes), sampling.describe(), int(per_sample), int(fields),
       fields == 1 ? "" : "s", reference::human_bytes(double(available)), threads));
 }
 
-reference::FrameSequence read_gate_frames(const CaseFile& case_file,
-                                          const std::string& pattern_override, int threads) {
-  return read_frames(case_file, pattern_override, {}, threads);
+void require_cascade_set_memory(const CaseFile& set, int threads) {
+  // Per sample of each cascade: frame 0's spectral view (power, μ of the case and of the sea,
+  // |k|, kx, ky: 48 bytes) and its spectrum (16), the recovered amplitudes (17) and their fit's
+  // sums (64 per entry); with three frames or more, per patch length of the set, the patch
+  // fit's sums, amplitudes and residuals over the half plane (about 60). Beside them, the
+  // largest surface's own analysis (require_streamed_gate_memory's figure).
+  std::size_t lengths = 0;
+  std::vector<std::pair<double, double>> seen;
+  for (std::size_t c = 0; c < set.cascades.size(); ++c) {
+    const auto grid = set.cascade_case(c).grid;
+    if (std::find(seen.begin(), seen.end(), std::make_pair(grid.lx, grid.ly)) == seen.end()) {
+      seen.emplace_back(grid.lx, grid.ly);
+      ++lengths;
+    }
+  }
+  double bytes = 0, largest_surface = 0;
+  for (std::size_t c = 0; c < set.cascades.size(); ++c) {
+    if (set.cascades[c].input.files.empty()) continue;
+    const auto ocean = set.cascade_case(c);
+    const double samples = double(ocean.sampling().size());
+    bytes += samples * (48 + 16 + 17 + 64 + (ocean.frames >= 3 ? 60.0 * double(lengths) : 0.0));
+    largest_surface = std::max(
+        largest_surface, samples * streamed_bytes_per_sample(set.cascades[c].input.channels.size(), threads));
+  }
+  const std::uint64_t available = reference::available_memory_bytes();
+  if (available == 0 || bytes + largest_surface <= double(available)) return;
+  throw InvalidInput(fmt::format(
+      "swell gate needs about {} for a cascade set: the set checks' sums over the wave vectors "
+      "of every cascade ({}), whatever the frame counts, beside the largest surface's own "
+      "analysis ({}), and the machine has {} available: use smaller cascade grids, or fewer "
+      "threads (--threads {})",
+      reference::human_bytes(bytes + largest_surface), reference::human_bytes(bytes),
+      reference::human_bytes(largest_surface), reference::human_bytes(double(available)), threads));
 }
 
 CaseFile surface_case_file(const CaseFile& set, const reference::OceanCase& ocean,

@@ -49,8 +49,9 @@ thread_local int keep_guards = 0;
 
 class Scratch {
  public:
+  // Not zeroed: every call writes the input whole, and the transform the output.
   void* get(std::size_t bytes) {
-    if (!buffer_ || buffer_->bytes() < bytes) buffer_ = std::make_unique<impls::HostBuffer>(bytes);
+    if (!buffer_ || buffer_->bytes() < bytes) buffer_ = std::make_unique<impls::HostBuffer>(bytes, impls::HostBuffer::Fill::none);
     return buffer_->host_data();
   }
   void release_if_large() {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "swell/impls/synthesizer.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/validation/gate/gate.hpp"
 #include "swell/validation/gate/render.hpp"
@@ -249,6 +251,93 @@ TEST_F(StreamedGate, AFrameThatCannotBeReadStopsTheStreamWithItsName) {
                  if (f == 1) throw InvalidInput("stop");
                }),
                InvalidInput);
+}
+
+// A cascade set's surfaces stream too, each from its own files: the set checks keep sums per
+// wave vector (the patch check's residuals in a second pass, the nested check's coarse frames
+// read beside the broad band's), and say what the gate on the frames read whole says, number
+// for number. An additive set of two cascades with their sum, and a nested pair, fp32 EXR
+// written by the synthesizer as `swell synth` writes a set.
+TEST_F(StreamedGate, CascadeSetsStreamAndReportAsInMemory) {
+  const std::string sea =
+      "[time]\ndt = 0.5\nframes = 5\n[spectrum]\nmodel = \"jonswap\"\nhs = 3.0\ntp = 8.0\n"
+      "gamma = 3.3\n[spreading]\nmodel = \"cos2s\"\ns = 10.0\nwind_dir_deg = 30.0\n"
+      "[synthesis]\nchoppiness = 0.8\nseed = 11\n";
+  const std::vector<std::pair<std::string, std::string>> sets = {
+      {"additive", "[cascades]\nrelation = \"additive\"\n"
+                   "[[cascade]]\nn = 64\nlength = 1000.0\nband = [0.0, 0.1]\n"
+                   "[[cascade]]\nn = 64\nlength = 250.0\nband = [0.1, 0.8]\n"},
+      {"nested", "[cascades]\nrelation = \"nested\"\n[[cascade]]\nn = 32\nlength = 1000.0\n"
+                 "[[cascade]]\nn = 128\nlength = 1000.0\n"}};
+  swell::impls::SynthesizerOptions synthesis;
+  synthesis.precision = swell::impls::Precision::f32;
+  swell::validation::FrameWriteOptions write;
+  write.format = FrameFormat::exr;
+  const std::vector<Field> fields = {Field::height, Field::disp_x, Field::disp_y};
+  for (const auto& [name, cascades] : sets) {
+    SCOPED_TRACE(name);
+    const fs::path directory = dir_ / name;
+    CaseFile set = swell::validation::parse_case_toml(sea + cascades, directory / "case.toml");
+    // Each surface's frames, into its folder: cascadeN/, and sum/ for the additive set.
+    auto write_surface = [&](const OceanCase& ocean, const std::string& folder) {
+      const swell::impls::Synthesizer synthesizer(ocean, synthesis);
+      fs::create_directories(directory / folder);
+      for (int f = 0; f < ocean.frames; ++f) {
+        auto frame = synthesizer.frame(ocean.time(f));
+        std::erase_if(frame.fields, [&](const auto& entry) {
+          return std::find(fields.begin(), fields.end(), entry.first) == fields.end();
+        });
+        swell::validation::write_frame(directory / folder, ocean.grid, frame, f, write);
+      }
+      auto input = swell::validation::frame_input_spec(fields, write);
+      input.files = folder + "/" + input.files;
+      return input;
+    };
+    for (std::size_t c = 0; c < set.cascades.size(); ++c) {
+      set.cascades[c].input = write_surface(set.cascade_case(c), "cascade" + std::to_string(c));
+    }
+    const bool with_sum = name == "additive";
+    if (with_sum) set.sum = write_surface(*set.summed_case(), "sum");
+    swell::validation::write_case_file(directory / "case.toml", set);
+
+    const CaseFile read_back = swell::validation::read_case_file(directory / "case.toml");
+    std::vector<FrameSequence> whole;
+    for (std::size_t c = 0; c < read_back.cascades.size(); ++c) {
+      CaseFile surface;
+      surface.ocean = read_back.cascade_case(c);
+      surface.input = read_back.cascades[c].input;
+      surface.directory = read_back.directory;
+      whole.push_back(swell::validation::read_frames(surface));
+    }
+    FrameSequence sum;
+    if (with_sum) {
+      CaseFile surface;
+      surface.ocean = *read_back.summed_case();
+      surface.input = read_back.sum;
+      surface.directory = read_back.directory;
+      sum = swell::validation::read_frames(surface);
+    }
+    for (int threads : {1, 2}) {
+      SCOPED_TRACE(threads);
+      GateOptions options;
+      options.threads = threads;
+      const auto in_memory =
+          swell::validation::run_cascade_gate(read_back, whole, with_sum ? &sum : nullptr, options);
+      const auto streamed = swell::validation::run_gate(directory / "case.toml", options);
+      EXPECT_EQ(comparable(streamed).dump(1), comparable(in_memory).dump(1));
+      EXPECT_TRUE(streamed.passed()) << swell::validation::gate_json(streamed).dump(1);
+      EXPECT_GT(streamed.read_seconds, 0);
+      // Every set check ran.
+      const auto json = comparable(streamed);
+      for (const char* check : with_sum ? std::vector<const char*>{"cascades.energy", "cascades.independence",
+                                                                     "cascades.patch", "sum.band.outside"}
+                                        : std::vector<const char*>{"cascades.nested"}) {
+        bool found = false;
+        for (const auto& result : json["checks"]) found = found || result["check"] == check;
+        EXPECT_TRUE(found) << check;
+      }
+    }
+  }
 }
 
 // What the streamed gate needs does not grow with the frame count: a million frames of 64² are

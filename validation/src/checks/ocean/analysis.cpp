@@ -183,8 +183,9 @@ void Analysis::run_pass() const {
   // Chunks of wave vectors, a few per thread, for whichever thread is free.
   const std::size_t wave_chunks = std::min<std::size_t>(waves, std::size_t(2 * threads_));
   const std::size_t derived_fields = p.derived.present.size();
-  detail::TaskPool pool(threads_);
   {
+    // The pool's threads, and with them their transform scratch, end with the stream.
+    detail::TaskPool pool(threads_);
     const KeepAnalysisScratch keep_scratch;
     frames_.stream({}, [&](std::size_t f, const reference::FieldFrame& frame) {
       const std::vector<double>& h = height_of(frame, f);

@@ -29,15 +29,17 @@
 #include "swell/reference/cascade.hpp"
 #include "swell/reference/fields.hpp"
 #include "swell/reference/ocean_case.hpp"
+#include "swell/validation/io/frame_source.hpp"
 #include "swell/validation/results/check_result.hpp"
 
 namespace swell::validation {
 
-// One cascade's frames and case (its grid, band and random-number key).
+// One cascade's frames and case (its grid, band and random-number key). The frames stream
+// (io/frame_source.hpp): the set checks keep sums per wave vector, not the frames.
 struct CascadeView {
   int index = 0;
   const reference::OceanCase* ocean = nullptr;
-  const reference::FrameSequence* frames = nullptr;
+  const FrameSource* frames = nullptr;
 };
 
 struct CascadeSetOptions {
@@ -63,7 +65,7 @@ CascadeSetResults run_cascade_set_checks(const std::vector<CascadeView>& cascade
 CheckResult check_band_sharing(const reference::OceanCase& sea,
                                const std::vector<reference::CascadeMember>& members);
 // The band checks on a summed surface (`summed` has members).
-std::vector<CheckResult> check_summed_bands(const reference::OceanCase& summed,
-                                            const reference::FrameSequence& frames, double alpha);
+std::vector<CheckResult> check_summed_bands(const reference::OceanCase& summed, const FrameSource& frames,
+                                            double alpha);
 
 }  // namespace swell::validation
