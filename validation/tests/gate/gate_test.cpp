@@ -69,18 +69,7 @@ void write_text(const fs::path& path, const std::string& text) {
 // A small sea the checks resolve well: JONSWAP toward 30° in deep water, 64² over 400 m (the
 // peak at 4 Δk), 8 frames 0.5 s apart, λ = 0.8 — the built-in jonswap_deep case of
 // `swell check ocean`.
-OceanCase small_case(int frames = 8) {
-  OceanCase c;
-  c.grid = Grid::create(64, 64, 400, 400);
-  c.spectrum = {"jonswap", {{"hs", 3.0}, {"tp", 8.0}, {"gamma", 3.3}}, {}};
-  c.spreading = {"cos2s", {{"s", 10.0}}, {}};
-  c.wind_dir_deg = 30;
-  c.choppiness = 0.8;
-  c.dt = 0.5;
-  c.frames = frames;
-  c.seed = 2026;
-  return c;
-}
+OceanCase small_case(int frames = 8) { return swell::test::small_gate_case(frames); }
 
 CaseFile as_case_file(const OceanCase& c, SpectrumScale scale = SpectrumScale::absolute) {
   CaseFile file;

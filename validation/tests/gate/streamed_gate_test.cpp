@@ -23,6 +23,7 @@
 #include "swell/validation/io/frame_io.hpp"
 #include "swell/validation/io/frame_source.hpp"
 #include "swell/validation/io/half.hpp"
+#include "half_rounding.hpp"
 #include "test_engine.hpp"
 
 namespace {
@@ -38,28 +39,7 @@ using swell::validation::FileFrameSource;
 using swell::validation::FrameFormat;
 using swell::validation::GateOptions;
 
-OceanCase small_case(int frames) {
-  OceanCase c;
-  c.grid = Grid::create(64, 64, 400, 400);
-  c.spectrum = {"jonswap", {{"hs", 3.0}, {"tp", 8.0}, {"gamma", 3.3}}, {}};
-  c.spreading = {"cos2s", {{"s", 10.0}}, {}};
-  c.wind_dir_deg = 30;
-  c.choppiness = 0.8;
-  c.dt = 0.5;
-  c.frames = frames;
-  c.seed = 2026;
-  return c;
-}
-
-// The half nearest x (11 significant bits; multiples of 2⁻²⁴ below 2⁻¹⁴), |x| ≤ 65504: by hand,
-// as not every compiler swell's sanitizer stage uses has _Float16 on x86.
-double nearest_half(double x) {
-  const double a = std::abs(x);
-  if (a < 0x1p-14) return std::copysign(std::ldexp(std::round(std::ldexp(a, 24)), -24), x);
-  int exponent = 0;
-  const double significand = std::frexp(a, &exponent);  // [0.5, 1)
-  return std::copysign(std::ldexp(std::round(std::ldexp(significand, 11)), exponent - 11), x);
-}
+OceanCase small_case(int frames = 8) { return swell::test::small_gate_case(frames); }
 
 // A report's JSON without what differs from run to run (times) and the case's path.
 nlohmann::json comparable(const swell::validation::GateReport& report) {
@@ -154,7 +134,7 @@ TEST_F(StreamedGate, PrecisionIsThatOfEveryFrameNotFrameZeros) {
   case_file.ocean = c;
   FrameSequence frames = swell::test::render_surface(c);
   for (auto& [field, values] : frames.frames[0].fields) {
-    for (double& v : values) v = nearest_half(v);
+    for (double& v : values) v = swell::test::to_half(v, false);
   }
   const fs::path path = write("halves_then_floats", case_file, frames, FrameFormat::npy);
   const CaseFile read_back = swell::validation::read_case_file(path);
