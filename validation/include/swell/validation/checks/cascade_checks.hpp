@@ -51,7 +51,10 @@ struct CascadeSetOptions {
 // The band checks of every cascade (additive and independent sets), and the set's checks: a
 // summed set's energy (unless free_scale), independence and patch; a nested set's nested check.
 // The set checks need two cascades; `members` are the whole set's (naming who else carries a
-// range).
+// range). Each cascade's frames stream: once for the two-wave fit's sums (the recovered
+// amplitudes, and the patch check's fits at every patch length of the set), once more with
+// three frames or more for the patch fits' residuals; the nested check streams the broad band
+// and reads each coarse cascade's frame beside it.
 struct CascadeSetResults {
   std::vector<std::vector<CheckResult>> bands;  // bands[v]: cascades[v]'s ("cascadeN.band.…")
   std::vector<CheckResult> set;                 // the set's ("cascades.…")
