@@ -2,6 +2,7 @@
 memory layout; bad input with the command's message; the GIL released."""
 import json
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -181,24 +182,32 @@ def test_cascade_set_is_judged_per_cascade():
 
 
 def test_gate_releases_the_gil(sea):
+    # While a gate runs on another thread, this one keeps running Python: some of its ticks
+    # fall inside a gate call, not only between calls. A gate holding the GIL would let no
+    # tick be stamped between its start and its end (a tick waiting for the GIL is stamped
+    # once the gate returns). Timestamps, not a tick count, so that a loaded machine that
+    # wakes this thread rarely does not fail it.
     frames = swell.synth(sea, precision="float64")
-    ticks = []
+    ticks, calls = [], []
     done = threading.Event()
 
     def judge():
         for _ in range(3):
+            start = time.monotonic()
             swell.gate(sea, **frames)
+            calls.append((start, time.monotonic()))
         done.set()
 
     worker = threading.Thread(target=judge)
     worker.start()
     while not done.is_set():
-        ticks.append(1)
+        ticks.append(time.monotonic())
         done.wait(0.001)
     worker.join()
-    # Three gates take ≥ 0.3 s; a gate holding the GIL would let this loop run a few times at
-    # most (the interpreter switches only at its 5 ms interval between bytecodes it runs).
-    assert len(ticks) > 50
+    # Within the first three quarters of a call: a tick that waited for the GIL would be
+    # stamped only as the call returns, at its very end.
+    inside = [t for t in ticks if any(start < t < start + 0.75 * (end - start) for start, end in calls)]
+    assert len(inside) >= 3, (len(ticks), calls)
 
 
 def test_power_equals_the_commands(tmp_path, sea):
