@@ -356,4 +356,35 @@ TEST_F(StreamedGate, OnlyTheGridNeverTheFrameCountMakesACaseTooLarge) {
   }
 }
 
+// A cascade set whose set checks' sums over every cascade's wave vectors exceed the machine is
+// refused before any file is looked for, with the figure; the frame count never decides it.
+TEST_F(StreamedGate, ACascadeSetTooLargeForItsSumsIsRefusedBeforeReading) {
+  auto set_with = [&](int n, int frames) {
+    std::string text = "[time]\ndt = 0.5\nframes = " + std::to_string(frames) +
+                       "\n[spectrum]\nmodel = \"jonswap\"\nhs = 3.0\ntp = 8.0\n"
+                       "[spreading]\nmodel = \"cos2s\"\ns = 10.0\n[cascades]\nrelation = \"independent\"\n";
+    for (const char* length : {"4000.0", "1000.0"}) {
+      text += "[[cascade]]\nn = " + std::to_string(n) + "\nlength = " + length + "\nfiles = \"" +
+              (dir_ / "missing_%04d.exr").string() + "\"\nheight = \"h\"\n";
+    }
+    return swell::validation::parse_case_toml(text, dir_ / "set.toml");
+  };
+  try {
+    (void)swell::validation::run_gate(set_with(65536, 8), GateOptions{});
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidInput& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("for a cascade set"), std::string::npos) << what;
+    EXPECT_NE(what.find("whatever the frame counts"), std::string::npos) << what;
+    EXPECT_EQ(what.find("missing"), std::string::npos) << what;
+  }
+  // A million frames of two 64² cascades: not refused for memory, but for their first file.
+  try {
+    (void)swell::validation::run_gate(set_with(64, 1000000), GateOptions{});
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("missing frame file (frame 0 of 1000000"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
