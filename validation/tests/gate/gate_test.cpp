@@ -29,6 +29,7 @@
 #include "swell/validation/gate/gate.hpp"
 #include "swell/validation/io/npy.hpp"
 #include "swell/validation/checks/ocean_checks.hpp"
+#include "gate_cases.hpp"
 #include "test_engine.hpp"
 
 namespace {

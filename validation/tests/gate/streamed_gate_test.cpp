@@ -24,6 +24,7 @@
 #include "swell/validation/io/frame_source.hpp"
 #include "swell/validation/io/half.hpp"
 #include "half_rounding.hpp"
+#include "gate_cases.hpp"
 #include "test_engine.hpp"
 
 namespace {

@@ -120,21 +120,6 @@ struct EngineOptions {
 std::vector<std::complex<double>> engine_initial_amplitudes(const reference::OceanCase& ocean_case,
                                                             EngineBug bug = EngineBug::none);
 
-// The gate tests' small sea: JONSWAP (Hs 3 m, Tp 8 s, γ 3.3), cos2s s = 10 from 30°, λ 0.8,
-// 64² over 400 m, dt 0.5 s, seed 2026.
-inline reference::OceanCase small_gate_case(int frames = 8) {
-  reference::OceanCase c;
-  c.grid = reference::Grid::create(64, 64, 400, 400);
-  c.spectrum = {"jonswap", {{"hs", 3.0}, {"tp", 8.0}, {"gamma", 3.3}}, {}};
-  c.spreading = {"cos2s", {{"s", 10.0}}, {}};
-  c.wind_dir_deg = 30;
-  c.choppiness = 0.8;
-  c.dt = 0.5;
-  c.frames = frames;
-  c.seed = 2026;
-  return c;
-}
-
 // All six fields at the case's frame times, fp64 (unit_roundoff 2⁻⁵³). Validates the case.
 reference::FrameSequence render_surface(const reference::OceanCase& ocean_case,
                                         EngineBug bug = EngineBug::none,
