@@ -180,7 +180,7 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
                                                      const OceanCheckOptions& options,
                                                      const std::vector<OceanCheckGroup>& groups,
                                                      std::vector<double> travelling_power,
-                                                     int threads) {
+                                                     int threads, const BesideChecks& beside) {
   for (const auto& group : groups) {
     for (const auto& name : group.checks) entry(name);
   }
@@ -205,7 +205,13 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
   }
   if (any_group_reads("dispersion") && analysis->frame_count() >= 3) analysis->dispersion_pass();
   std::vector<OceanCheckReport> parts(groups.size());
-  detail::run_tasks(groups.size(), threads, [&](std::size_t g) {
+  const std::size_t first_group = beside ? 1 : 0;
+  detail::run_tasks(first_group + groups.size(), threads, [&](std::size_t task) {
+    if (task < first_group) {
+      beside(analysis->precision(), options.free_scale ? nullptr : &analysis->travelling_power());
+      return;
+    }
+    const std::size_t g = task - first_group;
     parts[g] = run_on(*analysis, groups[g].checks, g == 0);
   });
   return parts;

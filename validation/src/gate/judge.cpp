@@ -92,33 +92,32 @@ GateReport judge(const CaseFile& case_file, const FrameSource& frames,
   }
 
   // The gate's power on this case (a single surface: a cascade set shares α otherwise), in the
-  // precision frame 0 shows; made again below in the rare case that the frames, once all read,
-  // show another.
+  // precision the frames showed, beside the checks on their threads once the frames are read.
   const bool with_power = options.power && std::isnan(alpha_per_check);
   std::string no_power;
-  auto make_power = [&](const FramePrecision& precision, const std::vector<double>& travelling) {
-    // A table the case's sampling cannot support (no resolved wave) is a note, never bad input:
-    // the frames are still judged.
-    no_power.clear();
-    try {
-      report.power = gate_power(case_file, options.alpha, precision.unit_roundoff,
-                                precision.storage_roundoff, travelling);
-    } catch (const InvalidInput& e) {
-      report.power.reset();
-      no_power = std::string("no power table: ") + e.what();
-    }
-  };
-  const FramePrecision assumed = frames.precision();
-  if (with_power) make_power(assumed, travelling_power);
+  BesideChecks make_power;
+  if (with_power) {
+    make_power = [&](const FramePrecision& precision, const std::vector<double>* travelling) {
+      // A table the case's sampling cannot support (no resolved wave) is a note, never bad
+      // input: the frames are still judged. A free-scale analysis holds τ scaled: the case's
+      // own is evaluated again.
+      try {
+        std::vector<double> own;
+        if (!travelling) own = expected_travelling_power(case_file.ocean, threads);
+        report.power = gate_power(case_file, options.alpha, precision.unit_roundoff,
+                                  precision.storage_roundoff, travelling ? *travelling : own, threads);
+      } catch (const InvalidInput& e) {
+        report.power.reset();
+        no_power = std::string("no power table: ") + e.what();
+      }
+    };
+  }
   // Bad input (a grid that does not match, no height field) is thrown by the analysis.
   auto parts = run_ocean_check_groups(case_file.ocean, frames, check_options,
                                       ocean_check_groups_longest_first(),
-                                      std::move(travelling_power), threads);
+                                      std::move(travelling_power), threads, make_power);
   // The stored precision as every frame showed it (a file source knows it once all are read).
   const FramePrecision precision = frames.precision();
-  if (with_power && !(precision == assumed)) {
-    make_power(precision, expected_travelling_power(case_file.ocean, threads));
-  }
   if (precision.storage_roundoff > 0) {
     report.notes.push_back(fmt::format(
         "frames stored in half precision ({}): the exact checks allow each stored value an error "

@@ -15,9 +15,11 @@
 #include <functional>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <numeric>
 #include <random>
 
+#include "common/parallel_tasks.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/phase.hpp"
 #include "swell/validation/checks/ocean_check_table.hpp"
@@ -76,6 +78,8 @@ Setup make_setup(const CaseFile& case_file, double alpha, double unit_roundoff,
   const std::size_t frames = std::size_t(std::max(1, c.frames));
   s.alpha_per_check = alpha / double(statistical_ocean_checks(case_file.scale == SpectrumScale::free, frames).size());
   for (int f = 0; f < c.frames; ++f) s.times.push_back(c.time(f));
+  s.half_plane_weights.reserve(s.count / 2 + 1);
+  s.waves.reserve(s.count / 2 + 1);
   for (std::size_t e = 0; e < s.count; ++e) {
     if (!sampling.carries_energy(e)) continue;
     const auto [n, m] = sampling.wave_index(e);
@@ -93,7 +97,14 @@ Setup make_setup(const CaseFile& case_file, double alpha, double unit_roundoff,
     w.mu = mu[e];
     s.waves.push_back(w);
   }
-  std::stable_sort(s.waves.begin(), s.waves.end(), [](const Wave& x, const Wave& y) { return x.k < y.k; });
+  // By |k|, equal |k| in the samples' order (a stable sort's order), through a sort of (|k|,
+  // position) keys: moving the 64-byte records themselves was most of the sort's time.
+  std::vector<std::pair<double, std::size_t>> order(s.waves.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = {s.waves[i].k, i};
+  std::sort(order.begin(), order.end());
+  std::vector<Wave> sorted(s.waves.size());
+  for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = s.waves[order[i].second];
+  s.waves = std::move(sorted);
   return s;
 }
 
@@ -368,111 +379,67 @@ double fits_energy_share(const Setup& s) {
   return 2 * all / std::max(2 * fitted, all * 1e-300);
 }
 
-}  // namespace
-
-PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_roundoff,
-                      double storage_roundoff, const std::vector<double>& travelling_power) {
-  if (case_file.is_probe_case() || case_file.is_cascade_set()) {
-    throw InvalidInput("the power table is made for one surface's case (not a probes case or a cascade set)");
+// JONSWAP γ: spectrum.shape against the case's spectrum with γ' (its μ'/μ at each wave).
+PowerLine gamma_power_line(const Setup& s, const reference::OceanCase& c, const ShapePower& shape) {
+  PowerLine gamma;
+  gamma.error = "JONSWAP γ";
+  const auto found = c.spectrum.numbers.find("gamma");
+  const bool jonswap = c.spectrum.model == "jonswap" || c.spectrum.model == "tma";
+  if (!jonswap || c.components().size() > 1) {
+    gamma.smallest = "n/a (the case's spectrum has no γ)";
+    gamma.below = gamma.above = std::numeric_limits<double>::quiet_NaN();
+  } else {
+    const double gamma0 = found != c.spectrum.numbers.end() ? found->second : 3.3;
+    auto power_at = [&](double g) {
+      reference::OceanCase other = c;
+      other.spectrum.numbers["gamma"] = std::max(1.0, g);  // γ ≥ 1; γ0/(γ0) may round below it
+      const auto psi = other.directional_spectrum();
+      return shape.power([&](const Wave& w) {
+        const double mine = s.psi->psi(w.kx, w.ky) + s.psi->psi(-w.kx, -w.ky);
+        return mine > 0 ? (psi->psi(w.kx, w.ky) + psi->psi(-w.kx, -w.ky)) / mine : 1.0;
+      });
+    };
+    const double up = smallest_detected(1.001, 20, [&](double q) { return power_at(gamma0 * q) >= kPower; });
+    const double lowest = 1 / gamma0;  // γ ≥ 1
+    const double down = lowest < 0.999
+                            ? smallest_detected(1.001, 1 / lowest, [&](double q) { return power_at(gamma0 / q) >= kPower; })
+                            : std::numeric_limits<double>::quiet_NaN();
+    gamma.above = gamma0 * up;
+    gamma.below = gamma0 / down;
+    gamma.smallest = fmt::format("γ ≥ {:.4g} or ≤ {:.4g} (the case's {:g})", gamma.above, gamma.below, gamma0);
+    gamma.check = "spectrum.shape";
+    gamma.method = fmt::format("simulation ({} draws of {} rings)", kShapeDraws, shape.rings());
   }
-  require(alpha > 0 && alpha < 1, "alpha", "in (0, 1)", alpha);
-  const Setup s = make_setup(case_file, alpha, unit_roundoff, storage_roundoff, travelling_power);
-  PowerTable table;
-  table.power = kPower;
-  table.alpha = alpha;
-  table.alpha_per_check = s.alpha_per_check;
-  table.precision = storage_roundoff > 0 ? "half" : s.u > 2 * kFp64 ? "float" : "double";
-  if (s.waves.size() < 2) return table;
-  const auto& c = case_file.ocean;
-  const bool absolute = case_file.scale == SpectrumScale::absolute;
+  return gamma;
+}
 
-  // Energy × f: energy's law in closed form (the f whose 10 % quantile of f X reaches the
-  // check's upper bound), and spectrum.shape's rings simulated; the smaller error of the two.
-  {
-    const ShapePower shape(s, s.alpha_per_check);
-    const double shape_up = smallest_detected(1.0001, 1e4, [&](double f) {
-      return shape.power_of_factor(f) >= kPower;
-    });
-    const double shape_down = 1 / smallest_detected(1.0001, 1e4, [&](double f) {
-      return shape.power_of_factor(1 / f) >= kPower;
-    });
-    PowerLine line;
-    line.error = "energy factor";
-    double up = absolute ? shape_up : std::numeric_limits<double>::quiet_NaN();
-    double down = absolute ? shape_down : std::numeric_limits<double>::quiet_NaN();
-    std::string up_check = "spectrum.shape", down_check = "spectrum.shape";
-    if (absolute) {
-      const stats::WeightedExponentialSum law(s.half_plane_weights);
-      const double a = s.alpha_per_check;
-      const double energy_up = law.quantile(1 - a / 2) / law.quantile(1 - kPower);
-      const double energy_down = law.quantile(a / 2) / law.quantile(kPower);
-      if (!(energy_up >= up)) up = energy_up, up_check = "energy";
-      if (!(energy_down <= down)) down = energy_down, down_check = "energy";
-    }
-    line.above = up, line.below = down;
-    line.smallest = absolute ? fmt::format("× {:.4g} or × {:.4g}", up, down)
-                             : "n/a (scale = \"free\": the gate fits the scale)";
-    if (!absolute) up_check = down_check = "";
-    line.check = up_check == down_check ? up_check : up_check + " (above), " + down_check + " (below)";
-    line.method = up_check == "energy" && down_check == "energy"
-                      ? "closed form"
-                      : fmt::format("{}simulation ({} draws of {} rings)",
-                                    up_check == "energy" || down_check == "energy" ? "closed form and " : "",
-                                    kShapeDraws, shape.rings());
-    if (!absolute) line.method.clear();
-    table.lines.push_back(line);
-
-    // γ: spectrum.shape against the case's spectrum with γ' (its μ'/μ at each wave).
-    PowerLine gamma;
-    gamma.error = "JONSWAP γ";
-    const auto found = c.spectrum.numbers.find("gamma");
-    const bool jonswap = c.spectrum.model == "jonswap" || c.spectrum.model == "tma";
-    if (!jonswap || c.components().size() > 1) {
-      gamma.smallest = "n/a (the case's spectrum has no γ)";
-      gamma.below = gamma.above = std::numeric_limits<double>::quiet_NaN();
-    } else {
-      const double gamma0 = found != c.spectrum.numbers.end() ? found->second : 3.3;
-      auto power_at = [&](double g) {
-        reference::OceanCase other = c;
-        other.spectrum.numbers["gamma"] = std::max(1.0, g);  // γ ≥ 1; γ0/(γ0) may round below it
-        const auto psi = other.directional_spectrum();
-        return shape.power([&](const Wave& w) {
-          const double mine = s.psi->psi(w.kx, w.ky) + s.psi->psi(-w.kx, -w.ky);
-          return mine > 0 ? (psi->psi(w.kx, w.ky) + psi->psi(-w.kx, -w.ky)) / mine : 1.0;
-        });
-      };
-      const double up = smallest_detected(1.001, 20, [&](double q) { return power_at(gamma0 * q) >= kPower; });
-      const double lowest = 1 / gamma0;  // γ ≥ 1
-      const double down = lowest < 0.999
-                              ? smallest_detected(1.001, 1 / lowest, [&](double q) { return power_at(gamma0 / q) >= kPower; })
-                              : std::numeric_limits<double>::quiet_NaN();
-      gamma.above = gamma0 * up;
-      gamma.below = gamma0 / down;
-      gamma.smallest = fmt::format("γ ≥ {:.4g} or ≤ {:.4g} (the case's {:g})", gamma.above, gamma.below, gamma0);
-      gamma.check = "spectrum.shape";
-      gamma.method = fmt::format("simulation ({} draws of {} rings)", kShapeDraws, shape.rings());
-    }
-    table.lines.push_back(gamma);
-  }
-
-  // ω × (1 ± ε) on every wave: dispersion.residual (the fit's residual, closed form) or
-  // dispersion.omega (its bound on the measured ω of the most energetic waves).
+// ω × (1 ± ε) on every wave: the smallest ε that dispersion.residual (the fit's residual,
+// closed form) or dispersion.omega (its bound on the measured ω of the most energetic waves)
+// detects, and which of them in `omega_check`; NaN with fewer than 3 frames.
+double omega_epsilon(const Setup& s, std::string& omega_check) {
   double epsilon = std::numeric_limits<double>::quiet_NaN();
-  std::string omega_check;
   if (s.times.size() >= 3) {
     // As dispersion.residual judges: the rounding against the frames' energy where the fitted
     // waves carry less than the half plane's half of it.
     const double share = fits_energy_share(s);
     const double bound = std::pow(rounding_budget(kCompoundRounding, s.u, s.log2n), 2) * std::max(1.0, share / 2) +
                          4 * s.storage * s.storage * share;
+    // The most energetic waves, ties in τ+ + τ− and in ω taken in |k| order (the waves' own):
+    // chosen in linear time, not by sorting every wave.
     std::vector<const Wave*> strongest;
+    strongest.reserve(s.waves.size());
     for (const Wave& w : s.waves) strongest.push_back(&w);
-    std::sort(strongest.begin(), strongest.end(), [](const Wave* x, const Wave* y) {
-      return x->tau_plus + x->tau_minus > y->tau_plus + y->tau_minus;
-    });
     constexpr std::size_t kMostWaves = 4000;
-    if (strongest.size() > kMostWaves) strongest.resize(kMostWaves);
-    std::sort(strongest.begin(), strongest.end(), [](const Wave* x, const Wave* y) { return x->omega < y->omega; });
+    if (strongest.size() > kMostWaves) {
+      std::nth_element(strongest.begin(), strongest.begin() + kMostWaves - 1, strongest.end(),
+                       [](const Wave* x, const Wave* y) {
+                         const double px = x->tau_plus + x->tau_minus, py = y->tau_plus + y->tau_minus;
+                         return px > py || (px == py && x < y);
+                       });
+      strongest.resize(kMostWaves);
+    }
+    std::sort(strongest.begin(), strongest.end(),
+              [](const Wave* x, const Wave* y) { return x->omega < y->omega || (x->omega == y->omega && x < y); });
     // The fraction grows as ε² while εωT ≪ 1 (T the frames' span): from ε = 10⁻⁶, a few steps of
     // ε ← ε √(bound/fraction) reach the ε where it meets the bound (to 0.1 %).
     double e = 1e-6;
@@ -495,30 +462,36 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
     const double omega_bound = std::max(1e-6, rounding_budget(kCompoundRounding, s.u, s.log2n));
     if (below_nyquist && !(epsilon <= omega_bound)) epsilon = omega_bound, omega_check = "dispersion.omega";
   }
-  {
-    PowerLine line;
-    line.error = "ω, relative, on every wave";
-    line.above = epsilon, line.below = -epsilon;
-    if (std::isnan(epsilon)) {
-      line.smallest = "none (dispersion needs ≥ 3 frames)";
-    } else {
-      line.smallest = fmt::format("± {:.2g}", epsilon);
-      line.check = omega_check;
-      line.method = "closed form";
-      // At the peak k_p (the most energetic wave): ω ∝ √g, and ω² = g k tanh(k h).
-      const auto peak = std::max_element(s.waves.begin(), s.waves.end(),
-                                         [](const Wave& x, const Wave& y) { return x.mu < y.mu; });
-      const double kp = peak->k;
-      const double tanh0 = std::isinf(c.depth) ? 1.0 : std::tanh(kp * c.depth);
-      const double shallower = std::pow(1 - epsilon, 2) * tanh0;
-      line.note = fmt::format("g × {:.6g} or × {:.6g}; a depth of {:.4g} m instead of {} at the peak (k = {:.3g} rad/m)",
-                              std::pow(1 + epsilon, 2), std::pow(1 - epsilon, 2), std::atanh(shallower) / kp,
-                              std::isinf(c.depth) ? std::string("deep water") : fmt::format("{:g} m", c.depth), kp);
-    }
-    table.lines.push_back(line);
-  }
+  return epsilon;
+}
 
-  // Direction offset and spreading: direction.distribution's score, simulated.
+PowerLine omega_power_line(const Setup& s, const reference::OceanCase& c, double epsilon,
+                           const std::string& omega_check) {
+  PowerLine line;
+  line.error = "ω, relative, on every wave";
+  line.above = epsilon, line.below = -epsilon;
+  if (std::isnan(epsilon)) {
+    line.smallest = "none (dispersion needs ≥ 3 frames)";
+  } else {
+    line.smallest = fmt::format("± {:.2g}", epsilon);
+    line.check = omega_check;
+    line.method = "closed form";
+    // At the peak k_p (the most energetic wave): ω ∝ √g, and ω² = g k tanh(k h).
+    const auto peak = std::max_element(s.waves.begin(), s.waves.end(),
+                                       [](const Wave& x, const Wave& y) { return x.mu < y.mu; });
+    const double kp = peak->k;
+    const double tanh0 = std::isinf(c.depth) ? 1.0 : std::tanh(kp * c.depth);
+    const double shallower = std::pow(1 - epsilon, 2) * tanh0;
+    line.note = fmt::format("g × {:.6g} or × {:.6g}; a depth of {:.4g} m instead of {} at the peak (k = {:.3g} rad/m)",
+                            std::pow(1 + epsilon, 2), std::pow(1 - epsilon, 2), std::atanh(shallower) / kp,
+                            std::isinf(c.depth) ? std::string("deep water") : fmt::format("{:g} m", c.depth), kp);
+  }
+  return line;
+}
+
+// Direction offset and spreading: direction.distribution's score, simulated.
+void direction_power_lines(const Setup& s, const reference::OceanCase& c, PowerLine& offset_line,
+                           PowerLine& spreading_line) {
   const DirectionPower direction(s, s.alpha_per_check);
   {
     PowerLine line;
@@ -538,7 +511,7 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
       line.check = "direction.distribution";
       line.method = fmt::format("simulation ({} draws of the score)", kDirectionDraws);
     }
-    table.lines.push_back(line);
+    offset_line = line;
   }
   {
     PowerLine line;
@@ -565,40 +538,122 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
       line.check = "direction.distribution";
       line.method = fmt::format("simulation ({} draws of the score)", kDirectionDraws);
     }
-    table.lines.push_back(line);
+    spreading_line = line;
   }
+}
 
-  // λ: derived.disp_x is exact; its bound (checks/ocean/derived.cpp) on the expected fields is
-  // the smallest relative error of λ it sees, with certainty.
+// λ: derived.disp_x is exact; its bound (checks/ocean/derived.cpp) on the expected fields is
+// the smallest relative error of λ it sees, with certainty.
+PowerLine lambda_power_line(const Setup& s, const reference::OceanCase& c) {
+  const reference::Sampling sampling = c.sampling();
+  const double lambda = c.choppiness == 0 ? 1.0 : c.choppiness;
+  double mean_m2 = 0, own = 0;
+  const auto& mu = s.mu;
+  for (std::size_t e = 0; e < s.count; ++e) {
+    if (!sampling.carries_energy(e)) continue;
+    const auto [n, m] = sampling.wave_index(e);
+    const double kx = n * sampling.dkx(), ky = m * sampling.dky(), k = std::hypot(kx, ky);
+    const double m2 = c.choppiness * c.choppiness * kx * kx / (k * k);
+    mean_m2 += m2;
+    own += lambda * lambda * kx * kx / (k * k) * mu[e];
+  }
+  mean_m2 /= double(s.count);
+  const double own_case = c.choppiness == 0 ? 0.0 : own;
+  const double transform = s.log2n * s.log2n * own_case;
+  const double rounding = std::sqrt(s.u * s.u * (s.mean_square * mean_m2 + own_case + transform) / own);
+  const double storage = std::sqrt(s.storage * s.storage * (s.mean_square * mean_m2 + own_case) / own);
+  const double bound = 10 * rounding + 3 * storage + rounding_budget(kCompoundRounding, kFp64, s.log2n);
+  PowerLine line;
+  line.error = "choppiness λ";
+  line.above = bound, line.below = -bound;
+  line.smallest = c.choppiness == 0 ? fmt::format("any λ ≥ {:.2g} (the case's λ = 0)", bound)
+                                    : fmt::format("± {:.2g} relative (λ = {:g})", bound, c.choppiness);
+  line.check = "derived.disp_x";
+  line.method = "closed form";
+  line.note = "when the frames carry displacements";
+  return line;
+
+}
+
+}  // namespace
+
+PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_roundoff,
+                      double storage_roundoff, const std::vector<double>& travelling_power, int threads) {
+  if (case_file.is_probe_case() || case_file.is_cascade_set()) {
+    throw InvalidInput("the power table is made for one surface's case (not a probes case or a cascade set)");
+  }
+  require(alpha > 0 && alpha < 1, "alpha", "in (0, 1)", alpha);
+  const Setup s = make_setup(case_file, alpha, unit_roundoff, storage_roundoff, travelling_power);
+  PowerTable table;
+  table.power = kPower;
+  table.alpha = alpha;
+  table.alpha_per_check = s.alpha_per_check;
+  table.precision = storage_roundoff > 0 ? "half" : s.u > 2 * kFp64 ? "float" : "double";
+  if (s.waves.size() < 2) return table;
+  const auto& c = case_file.ocean;
+  const bool absolute = case_file.scale == SpectrumScale::absolute;
+
+  // The lines are independent but for their last assembly: their pieces run side by side on
+  // `threads` threads (the energy law's four quantiles each a piece), numbered in the order the
+  // table used to make them, so an error is the one a sequential run meets first.
+  const ShapePower shape(s, s.alpha_per_check);
+  double shape_up = 0, shape_down = 0;
+  std::array<double, 4> energy_quantiles{};  // α/2, 1 − α/2, 1 − power, power
+  std::optional<stats::WeightedExponentialSum> law;
+  if (absolute) law.emplace(s.half_plane_weights);
+  PowerLine gamma_line, omega_line, offset_line, spreading_line, lambda_line;
+  double epsilon = std::numeric_limits<double>::quiet_NaN();
+  std::string omega_check;
+  const std::array<std::function<void()>, 9> pieces = {
+      [&] {
+        shape_up = smallest_detected(1.0001, 1e4, [&](double f) { return shape.power_of_factor(f) >= kPower; });
+        shape_down = 1 / smallest_detected(1.0001, 1e4, [&](double f) {
+          return shape.power_of_factor(1 / f) >= kPower;
+        });
+      },
+      [&] { if (law) energy_quantiles[0] = law->quantile(1 - s.alpha_per_check / 2); },
+      [&] { if (law) energy_quantiles[1] = law->quantile(1 - kPower); },
+      [&] { if (law) energy_quantiles[2] = law->quantile(s.alpha_per_check / 2); },
+      [&] { if (law) energy_quantiles[3] = law->quantile(kPower); },
+      [&] { gamma_line = gamma_power_line(s, c, shape); },
+      [&] { epsilon = omega_epsilon(s, omega_check); omega_line = omega_power_line(s, c, epsilon, omega_check); },
+      [&] { direction_power_lines(s, c, offset_line, spreading_line); },
+      [&] { lambda_line = lambda_power_line(s, c); },
+  };
+  detail::run_tasks(pieces.size(), threads, [&](std::size_t i) { pieces[i](); });
+
+  // Energy × f: energy's law in closed form (the f whose 10 % quantile of f X reaches the
+  // check's upper bound), and spectrum.shape's rings simulated; the smaller error of the two.
   {
-    const reference::Sampling sampling = c.sampling();
-    const double lambda = c.choppiness == 0 ? 1.0 : c.choppiness;
-    double mean_m2 = 0, own = 0;
-    const auto& mu = s.mu;
-    for (std::size_t e = 0; e < s.count; ++e) {
-      if (!sampling.carries_energy(e)) continue;
-      const auto [n, m] = sampling.wave_index(e);
-      const double kx = n * sampling.dkx(), ky = m * sampling.dky(), k = std::hypot(kx, ky);
-      const double m2 = c.choppiness * c.choppiness * kx * kx / (k * k);
-      mean_m2 += m2;
-      own += lambda * lambda * kx * kx / (k * k) * mu[e];
-    }
-    mean_m2 /= double(s.count);
-    const double own_case = c.choppiness == 0 ? 0.0 : own;
-    const double transform = s.log2n * s.log2n * own_case;
-    const double rounding = std::sqrt(s.u * s.u * (s.mean_square * mean_m2 + own_case + transform) / own);
-    const double storage = std::sqrt(s.storage * s.storage * (s.mean_square * mean_m2 + own_case) / own);
-    const double bound = 10 * rounding + 3 * storage + rounding_budget(kCompoundRounding, kFp64, s.log2n);
     PowerLine line;
-    line.error = "choppiness λ";
-    line.above = bound, line.below = -bound;
-    line.smallest = c.choppiness == 0 ? fmt::format("any λ ≥ {:.2g} (the case's λ = 0)", bound)
-                                      : fmt::format("± {:.2g} relative (λ = {:g})", bound, c.choppiness);
-    line.check = "derived.disp_x";
-    line.method = "closed form";
-    line.note = "when the frames carry displacements";
+    line.error = "energy factor";
+    double up = absolute ? shape_up : std::numeric_limits<double>::quiet_NaN();
+    double down = absolute ? shape_down : std::numeric_limits<double>::quiet_NaN();
+    std::string up_check = "spectrum.shape", down_check = "spectrum.shape";
+    if (absolute) {
+      const double energy_up = energy_quantiles[0] / energy_quantiles[1];
+      const double energy_down = energy_quantiles[2] / energy_quantiles[3];
+      if (!(energy_up >= up)) up = energy_up, up_check = "energy";
+      if (!(energy_down <= down)) down = energy_down, down_check = "energy";
+    }
+    line.above = up, line.below = down;
+    line.smallest = absolute ? fmt::format("× {:.4g} or × {:.4g}", up, down)
+                             : "n/a (scale = \"free\": the gate fits the scale)";
+    if (!absolute) up_check = down_check = "";
+    line.check = up_check == down_check ? up_check : up_check + " (above), " + down_check + " (below)";
+    line.method = up_check == "energy" && down_check == "energy"
+                      ? "closed form"
+                      : fmt::format("{}simulation ({} draws of {} rings)",
+                                    up_check == "energy" || down_check == "energy" ? "closed form and " : "",
+                                    kShapeDraws, shape.rings());
+    if (!absolute) line.method.clear();
     table.lines.push_back(line);
   }
+  table.lines.push_back(gamma_line);
+  table.lines.push_back(omega_line);
+  table.lines.push_back(offset_line);
+  table.lines.push_back(spreading_line);
+  table.lines.push_back(lambda_line);
 
   // The time step dt(1 + ε) moves every phase ωt as ω(1 + ε) does.
   {
@@ -624,9 +679,9 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
 PowerTable gate_power(const CaseFile& case_file, double alpha, int threads) {
   const std::string& precision = case_file.input.precision;
   const auto tau = expected_travelling_power(case_file.ocean, threads);
-  if (precision == "half") return gate_power(case_file, alpha, 0x1p-24, kHalfUlp, tau);
-  if (precision == "double") return gate_power(case_file, alpha, kFp64, 0, tau);
-  return gate_power(case_file, alpha, 0x1p-24, 0, tau);
+  if (precision == "half") return gate_power(case_file, alpha, 0x1p-24, kHalfUlp, tau, threads);
+  if (precision == "double") return gate_power(case_file, alpha, kFp64, 0, tau, threads);
+  return gate_power(case_file, alpha, 0x1p-24, 0, tau, threads);
 }
 
 nlohmann::json power_json(const PowerTable& table) {

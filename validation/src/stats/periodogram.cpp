@@ -115,8 +115,9 @@ std::vector<std::complex<double>> field_spectrum(const std::vector<double>& fiel
 namespace {
 
 // The inverse transform of what `fill` writes into the calling thread's transform input.
+// With `imaginary_field`, the imaginary part into it (two fields packed in one transform).
 void field_from_filled_spectrum(const Grid& grid, const std::function<void(std::span<Complex>)>& fill,
-                                std::vector<double>& field) {
+                                std::vector<double>& field, std::vector<double>* imaginary_field = nullptr) {
   const std::size_t count = std::size_t(grid.nx) * grid.ny;
   auto* in = static_cast<Complex*>(scratch(0).get(count * sizeof(Complex)));
   auto* out = static_cast<Complex*>(scratch(1).get(count * sizeof(Complex)));
@@ -124,6 +125,10 @@ void field_from_filled_spectrum(const Grid& grid, const std::function<void(std::
   analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::inverse).execute(in, out);
   field.resize(count);
   for (std::size_t i = 0; i < count; ++i) field[i] = out[i].real();
+  if (imaginary_field) {
+    imaginary_field->resize(count);
+    for (std::size_t i = 0; i < count; ++i) (*imaginary_field)[i] = out[i].imag();
+  }
   scratch(0).release_if_large();
   scratch(1).release_if_large();
 }
@@ -242,6 +247,12 @@ void field_from_spectrum(const reference::Sampling& sampling,
                          const std::function<void(std::span<std::complex<double>>)>& fill,
                          std::vector<double>& field) {
   field_from_filled_spectrum(transform_shape(sampling), fill, field);
+}
+
+void fields_from_spectrum(const reference::Sampling& sampling,
+                          const std::function<void(std::span<std::complex<double>>)>& fill,
+                          std::vector<double>& real_field, std::vector<double>& imaginary_field) {
+  field_from_filled_spectrum(transform_shape(sampling), fill, real_field, &imaginary_field);
 }
 
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,

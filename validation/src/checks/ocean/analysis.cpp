@@ -182,7 +182,7 @@ void Analysis::run_pass() const {
   std::vector<Complex> phases(p.groups.omegas.size());  // e^(−iωt) per distinct ω
   // Chunks of wave vectors, a few per thread, for whichever thread is free.
   const std::size_t wave_chunks = std::min<std::size_t>(waves, std::size_t(2 * threads_));
-  const std::size_t derived_fields = p.derived.present.size();
+  const std::size_t derived_units = p.derived.units.size();
   {
     // The pool's threads, and with them their transform scratch, end with the stream.
     detail::TaskPool pool(threads_);
@@ -213,13 +213,13 @@ void Analysis::run_pass() const {
         s[g] += std::conj(phases[g]) * std::conj(phases[g]);
       }
       const double height_power = p.height_sums[f] / double(count_);  // mean_square(h), bit for bit
-      pool.run(derived_fields + 1 + wave_chunks, [&](std::size_t task) {
+      pool.run(derived_units + 1 + wave_chunks, [&](std::size_t task) {
         const KeepAnalysisScratch keep_task_scratch;  // a pool thread's, freed as the pool ends
-        if (task < derived_fields) {
+        if (task < derived_units) {
           p.derived.add(*this, f, task, frame, hat, height_power);
           return;
         }
-        if (task == derived_fields) {
+        if (task == derived_units) {
           FrameStray& s = p.strays[f];
           for (std::size_t e : shared_->stray) {
             const double power = std::norm(hat[e]);
@@ -241,7 +241,7 @@ void Analysis::run_pass() const {
           if (p.parseval.state) p.parseval.add(*this, h);
           return;
         }
-        const std::size_t chunk = task - derived_fields - 1;
+        const std::size_t chunk = task - derived_units - 1;
         const std::size_t begin = chunk * waves / wave_chunks, end = (chunk + 1) * waves / wave_chunks;
         for (std::size_t w = begin; w < end; ++w) {
           const Complex e = phases[p.groups.group[w]];
@@ -297,9 +297,12 @@ void Analysis::run_dispersion_pass() const {
   for (const WaveFit& f : fits) {
     if (f.wave->omega > 0 && 3 * f.wave->omega / 2 < d.max_omega) d.strongest.push_back(&f);
   }
-  std::sort(d.strongest.begin(), d.strongest.end(),
-            [](const WaveFit* x, const WaveFit* y) { return x->energy > y->energy; });
-  if (d.strongest.size() > 24) d.strongest.resize(24);
+  // The 24 most energetic, equal energies in the fits' order: a partial sort, not a sort of
+  // every fit.
+  const std::size_t strongest = std::min<std::size_t>(24, d.strongest.size());
+  std::partial_sort(d.strongest.begin(), d.strongest.begin() + std::ptrdiff_t(strongest), d.strongest.end(),
+                    [](const WaveFit* x, const WaveFit* y) { return x->energy > y->energy || (x->energy == y->energy && x < y); });
+  d.strongest.resize(strongest);
   d.series.assign(d.strongest.size(), std::vector<Complex>(frames));
   for (WaveFit& fit : fits_) fit.residual = 0;
   const double scale = 1.0 / double(count_);

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <functional>
 #include <cmath>
@@ -141,12 +142,13 @@ struct OmegaGroups {
 template <typename Waves>
 OmegaGroups group_by_omega(const Waves& waves) {
   OmegaGroups out;
-  std::vector<std::size_t> order(waves.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t x, std::size_t y) { return waves[x].omega < waves[y].omega; });
+  // Sorted as (ω, position) pairs: a stable sort's order, without reaching into the waves for
+  // every comparison.
+  std::vector<std::pair<double, std::size_t>> order(waves.size());
+  for (std::size_t i = 0; i < waves.size(); ++i) order[i] = {waves[i].omega, i};
+  std::sort(order.begin(), order.end());
   out.group.resize(waves.size());
-  for (std::size_t i : order) {
+  for (const auto& [omega, i] : order) {
     if (out.omegas.empty() || !(out.omegas.back() == waves[i].omega)) out.omegas.push_back(waves[i].omega);
     out.group[i] = out.omegas.size() - 1;
   }
@@ -216,20 +218,25 @@ struct DerivedFold {
   };
   std::vector<Field> present;
   std::vector<Judged> judged;              // judged[frame × present + field]
+  // The pass's units of work, one inverse transform each (two or three for the Jacobian):
+  // positions in `present`, the second −1 for a field alone; `paired` where two fields share a
+  // transform (frames stored coarser than fp64).
+  std::vector<std::array<int, 2>> units;
+  bool paired = false;
   // kx per column, ky per row (per entry on a lattice: ky_by_row false, one row), |k| per
   // entry in FFT order; made once.
   std::vector<double> kx_of, ky_of, k_of;
   std::size_t rows = 0, columns = 0;
   bool ky_by_row = false;
   void start(const Analysis& a);
-  // Field `i` of `present` on frame f.
-  void add(const Analysis& a, std::size_t f, std::size_t i, const reference::FieldFrame& frame,
+  // Unit `unit` of `units` on frame f.
+  void add(const Analysis& a, std::size_t f, std::size_t unit, const reference::FieldFrame& frame,
            std::span<const Complex> spectrum, double height_power);
   void finish();  // frees the arrays the pass reused
 
   // The arrays one add() works in, kept for the next.
   struct Scratch {
-    std::vector<double> expected, dxx, dyy, dxy, unit;
+    std::vector<double> expected, companion, dxx, dyy, dxy, unit, unit_companion;
   };
   Scratch& acquire();
   void release(Scratch& scratch);
@@ -291,6 +298,8 @@ class Analysis {
   double scale() const { return scale_; }
   const std::vector<double>& times() const { return times_; }
   const std::vector<double>& mu() const { return shared_->mu; }
+  // τ(k) over the samples: the case's, times scale() with a free scale.
+  const std::vector<double>& travelling_power() const { return shared_->tau; }
   const std::vector<Complex>& spectrum0() const { return shared_->spectrum0; }
   // Frame 0's height moments about 0 (statistics' skewness and kurtosis): the height itself is
   // not kept.

@@ -268,6 +268,28 @@ void DerivedFold::start(const Analysis& a) {
   }
   judged.assign(a.frame_count() * present.size(), Judged{});
   if (present.empty()) return;
+  // One inverse transform per unit of work: for frames stored coarser than fp64 (float, half,
+  // 16-bit), the slopes and the displacements in pairs (the real and imaginary parts of one
+  // transform), the Jacobian's ∂Dx/∂x and ∂Dy/∂y too; any field without its partner alone. The
+  // pair's fp64 rounding of the other field is far below the stored numbers' own; frames in
+  // fp64, judged at fp64's rounding, keep a transform per field.
+  paired = a.unit_roundoff() > 2 * kFp64Roundoff;
+  auto position = [&](Field f) {
+    const auto it = std::find(present.begin(), present.end(), f);
+    return it == present.end() ? -1 : int(it - present.begin());
+  };
+  if (const int j = position(Field::jacobian); j >= 0) units.push_back({j, -1});
+  for (const auto& [x, y] : {std::pair{Field::disp_x, Field::disp_y}, std::pair{Field::slope_x, Field::slope_y}}) {
+    const int i = position(x), k = position(y);
+    if (i >= 0 && k >= 0 && paired) {
+      units.push_back({i, k});
+    } else if (i >= 0 && k >= 0) {
+      units.push_back({i, -1});
+      units.push_back({k, -1});
+    } else if (i >= 0 || k >= 0) {
+      units.push_back({std::max(i, k), -1});
+    }
+  }
   // kx, ky and |k| made once for the up to 14 derivations of each frame (hypot in each of their
   // loops was a third of this check's time). On a grid kx depends on the column alone and ky on
   // the row: held per column and per row, only |k| per entry.
@@ -289,9 +311,9 @@ void DerivedFold::start(const Analysis& a) {
   }
 }
 
-// Field `i` of `present` on frame f, from the frame's height spectrum; the pass calls it for
-// each field of each frame, the fields of one frame side by side.
-void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t i, const reference::FieldFrame& values,
+// Unit `unit` of `units` on frame f, from the frame's height spectrum; the pass calls it for
+// each unit of each frame, the units of one frame side by side.
+void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t unit, const reference::FieldFrame& values,
                       std::span<const Complex> spectrum, double h_power) {
   const Sampling& g = a.sampling();
   const double lambda = a.ocean_case().choppiness;
@@ -304,27 +326,65 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t i, const
     Scratch& scratch;
     ~Release() { fold.release(scratch); }
   } release_on_exit{*this, scratch};
-  // The field λ's multiplier m makes of the height spectrum, into `into`: written straight into
-  // the inverse transform's input, row by row (kx by column, ky by row on a grid).
-  auto derive = [&](const auto& m, double& mean_m2, std::vector<double>& into) {
-    mean_m2 = 0;
-    field_from_spectrum(g, [&](std::span<Complex> s) {
+  // The fields the multipliers m_a (and m_b) make of the height spectrum, into `into_a` (and
+  // `into_b`): written straight into the inverse transform's input, row by row (kx by column,
+  // ky by row on a grid). Two fields share one transform as m_a ĥ + i m_b ĥ: each m ĥ is the
+  // spectrum of a real field, so the real part of the result is the first field and the
+  // imaginary part the second, each with the transform's rounding of the other besides its own.
+  auto derive_into = [&](const auto& m_a, const auto* m_b, double& mean_a, double* mean_b,
+                         std::vector<double>& into_a, std::vector<double>* into_b) {
+    mean_a = 0;
+    if (mean_b) *mean_b = 0;
+    auto fill = [&](std::span<Complex> s) {
       for (std::size_t row = 0, e = 0; row < rows; ++row) {
         for (std::size_t column = 0; column < columns; ++column, ++e) {
-          const Complex mult =
-              g.carries_energy(e) ? m(kx_of[column], ky_of[ky_by_row ? row : column], k_of[e]) : 0.0;
-          s[e] = mult * spectrum[e];
-          mean_m2 += std::norm(mult);
+          if (!g.carries_energy(e)) {
+            s[e] = 0;
+            continue;
+          }
+          const double kx = kx_of[column], ky = ky_of[ky_by_row ? row : column], k = k_of[e];
+          const Complex mult = m_a(kx, ky, k);
+          mean_a += std::norm(mult);
+          if (m_b) {
+            const Complex second = (*m_b)(kx, ky, k);
+            *mean_b += std::norm(second);
+            s[e] = mult * spectrum[e] + Complex(0, 1) * (second * spectrum[e]);
+          } else {
+            s[e] = mult * spectrum[e];
+          }
         }
       }
-    }, into);
-    mean_m2 /= double(spectrum.size());
+    };
+    if (m_b) {
+      fields_from_spectrum(g, fill, into_a, *into_b);
+      *mean_b /= double(spectrum.size());
+    } else {
+      field_from_spectrum(g, fill, into_a);
+    }
+    mean_a /= double(spectrum.size());
   };
-  auto jacobian_minus_one = [&](double l, double& mean_m2, double& products, std::vector<double>& out) {
+  auto derive = [&](const auto& m, double& mean_m2, std::vector<double>& into) {
+    derive_into(m, static_cast<decltype(&m)>(nullptr), mean_m2, nullptr, into, nullptr);
+  };
+  auto derive_two = [&](const auto& m_a, const auto& m_b, double& mean_a, double& mean_b,
+                        std::vector<double>& into_a, std::vector<double>& into_b) {
+    derive_into(m_a, &m_b, mean_a, &mean_b, into_a, &into_b);
+  };
+  // J − 1 from λ∂Dx/∂x (a), λ∂Dy/∂y (b), sharing one transform, and λ∂Dx/∂y (c) in another.
+  // `leak`: the rms the shared transform's rounding of b brings into J through a, and of a
+  // through b, in units of the analysis transform's relative rounding.
+  auto jacobian_minus_one = [&](double l, double& mean_m2, double& products, double& leak,
+                                std::vector<double>& out) {
     double m_xx = 0, m_yy = 0, m_xy = 0;
     std::vector<double>&dxx = scratch.dxx, &dyy = scratch.dyy, &dxy = scratch.dxy;
-    derive([&](double kx, double, double k) { return Complex(-l * kx * kx / k); }, m_xx, dxx);
-    derive([&](double, double ky, double k) { return Complex(-l * ky * ky / k); }, m_yy, dyy);
+    auto m_a = [&](double kx, double, double k) { return Complex(-l * kx * kx / k); };
+    auto m_b = [&](double, double ky, double k) { return Complex(-l * ky * ky / k); };
+    if (paired) {
+      derive_two(m_a, m_b, m_xx, m_yy, dxx, dyy);
+    } else {
+      derive(m_a, m_xx, dxx);
+      derive(m_b, m_yy, dyy);
+    }
     derive([&](double kx, double ky, double k) { return Complex(-l * kx * ky / k); }, m_xy, dxy);
     out.resize(dxx.size());
     products = 0;
@@ -346,55 +406,95 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t i, const
     const double n = double(dxx.size());
     products /= n;
     mean_m2 = m_xx * weight_a / n + m_yy * weight_b / n + m_xy * (2 + 4 * weight_c / n);
+    leak = paired ? std::sqrt(weight_a / n * mean_square(dyy)) + std::sqrt(weight_b / n * mean_square(dxx)) : 0.0;
   };
-  const Field field = present[i];
-  const std::vector<double>& got = values.fields.at(field);
-  const bool jacobian = field == Field::jacobian;
-  double mean_m2 = 0, jacobian_products = 0;
-  std::vector<double>& expected = scratch.expected;
-  if (jacobian) {
-    jacobian_minus_one(lambda, mean_m2, jacobian_products, expected);
-  } else {
-    derive([&](double kx, double ky, double k) { return multiplier(field, lambda, kx, ky, k); }, mean_m2, expected);
-  }
-  // What measures the error: the field's expected rms, or, where λ = 0 makes the
-  // displacements (and J − 1) zero, what λ = 1 would put there.
-  double expected_power = mean_square(expected);
-  if (lambda == 0 && field != Field::slope_x && field != Field::slope_y) {
-    double unit_m2 = 0, unit_products = 0;
-    if (jacobian) {
-      jacobian_minus_one(1.0, unit_m2, unit_products, scratch.unit);
-    } else {
-      derive([&](double kx, double ky, double k) { return multiplier(field, 1.0, kx, ky, k); }, unit_m2, scratch.unit);
+  // One field judged against `expected` (J − 1 for the Jacobian). `expected_power` measures the
+  // error (the field's expected mean square, or what λ = 1 would put there where λ = 0 makes it
+  // zero); `leak` is the rms of what a transform shared with another field brings in, in units
+  // of the analysis transform's relative rounding (0 for a transform of its own).
+  auto judge = [&](Field field, const std::vector<double>& expected, double mean_m2, double expected_power,
+                   double jacobian_products, double leak) {
+    const std::vector<double>& got = values.fields.at(field);
+    const bool jacobian = field == Field::jacobian;
+    // mean_square of the difference got − expected (J − 1 for the Jacobian), summed as it sums.
+    double difference = 0;
+    for (std::size_t p = 0; p < expected.size(); ++p) {
+      const double d = (jacobian ? got[p] - 1 : got[p]) - expected[p];
+      difference += d * d;
     }
-    expected_power = mean_square(scratch.unit);
+    difference /= double(expected.size());
+    const double scale = std::sqrt(std::max(expected_power, 1e-300));
+    const double error = std::sqrt(difference) / scale;
+    const double own = jacobian ? jacobian_products : mean_square(expected);
+    // Rounding, in the stored numbers' unit roundoff u: of the stored height, carried into
+    // the derived field by its multiplier (h_power·mean |m|²); of the stored field itself
+    // (own); and of the engine's own inverse transform of this field, ≈ u log2 N relative in
+    // L2 (the accuracy bound of every FFT, docs/transforms.md) — which a J made of three
+    // transformed λ∂D terms shows first (the command line's property test).
+    // (For J, each factor of its two products carries that error relative to itself.)
+    const double transform = a.log2n() * a.log2n() *
+                             (jacobian ? std::max(mean_square(expected), jacobian_products) : mean_square(expected));
+    const double rounding = std::sqrt(u * u * (h_power * mean_m2 + own + transform)) / scale;
+    // Half storage: each stored value (the height's and the field's own) within s of itself,
+    // s = 2⁻¹⁰; the height's error, white, carried by the multiplier. Its energy is bounded,
+    // not estimated, so 3× (not 10×) covers the two adding in phase: an error 10× s still fails.
+    const double s = a.storage_roundoff();
+    const double storage = std::sqrt(s * s * (h_power * mean_m2 + own)) / scale;
+    // The analysis' own fp64 transform: its rounding relative to the field, and to the field
+    // that shares its transform (leak / scale).
+    const double analysis = rounding_budget(kCompoundRounding, kFp64Roundoff, a.log2n());
+    const std::size_t i = std::size_t(std::find(present.begin(), present.end(), field) - present.begin());
+    judged[frame * present.size() + i] = {
+        error, 10 * rounding + 3 * storage + (leak > 0 ? analysis * (1 + leak / scale) : analysis)};
+  };
+
+  const auto [first, second] = units[unit];
+  if (present[first] == Field::jacobian) {
+    double mean_m2 = 0, products = 0, leak = 0;
+    jacobian_minus_one(lambda, mean_m2, products, leak, scratch.expected);
+    double expected_power = mean_square(scratch.expected);
+    if (lambda == 0) {
+      double unit_m2 = 0, unit_products = 0, unit_leak = 0;
+      jacobian_minus_one(1.0, unit_m2, unit_products, unit_leak, scratch.unit);
+      expected_power = mean_square(scratch.unit);
+    }
+    judge(Field::jacobian, scratch.expected, mean_m2, expected_power, products, leak);
+    return;
   }
-  // mean_square of the difference got − expected (J − 1 for the Jacobian), summed as it sums.
-  double difference = 0;
-  for (std::size_t p = 0; p < expected.size(); ++p) {
-    const double d = (jacobian ? got[p] - 1 : got[p]) - expected[p];
-    difference += d * d;
+  // A field's expected rms measures its error, or, where λ = 0 makes a displacement zero, what
+  // λ = 1 would put there.
+  auto multiplier_of = [](Field field, double l) {
+    return [field, l](double kx, double ky, double k) { return multiplier(field, l, kx, ky, k); };
+  };
+  if (second < 0) {
+    const Field field = present[first];
+    double mean_m2 = 0;
+    derive(multiplier_of(field, lambda), mean_m2, scratch.expected);
+    double expected_power = mean_square(scratch.expected);
+    if (lambda == 0 && field != Field::slope_x && field != Field::slope_y) {
+      double unit_m2 = 0;
+      derive(multiplier_of(field, 1.0), unit_m2, scratch.unit);
+      expected_power = mean_square(scratch.unit);
+    }
+    judge(field, scratch.expected, mean_m2, expected_power, 0, 0);
+    return;
   }
-  difference /= double(expected.size());
-  const double scale = std::sqrt(std::max(expected_power, 1e-300));
-  const double error = std::sqrt(difference) / scale;
-  const double own = jacobian ? jacobian_products : mean_square(expected);
-  // Rounding, in the stored numbers' unit roundoff u: of the stored height, carried into
-  // the derived field by its multiplier (h_power·mean |m|²); of the stored field itself
-  // (own); and of the engine's own inverse transform of this field, ≈ u log2 N relative in
-  // L2 (the accuracy bound of every FFT, docs/transforms.md) — which a J made of three
-  // transformed λ∂D terms shows first (the command line's property test).
-  // (For J, each factor of its two products carries that error relative to itself.)
-  const double transform = a.log2n() * a.log2n() *
-                           (jacobian ? std::max(mean_square(expected), jacobian_products) : mean_square(expected));
-  const double rounding = std::sqrt(u * u * (h_power * mean_m2 + own + transform)) / scale;
-  // Half storage: each stored value (the height's and the field's own) within s of itself,
-  // s = 2⁻¹⁰; the height's error, white, carried by the multiplier. Its energy is bounded,
-  // not estimated, so 3× (not 10×) covers the two adding in phase: an error 10× s still fails.
-  const double s = a.storage_roundoff();
-  const double storage = std::sqrt(s * s * (h_power * mean_m2 + own)) / scale;
-  judged[frame * present.size() + i] = {
-      error, 10 * rounding + 3 * storage + rounding_budget(kCompoundRounding, kFp64Roundoff, a.log2n())};
+  // A pair (slope_x, slope_y or disp_x, disp_y) in one transform.
+  const Field field_a = present[first], field_b = present[std::size_t(second)];
+  double mean_a = 0, mean_b = 0;
+  derive_two(multiplier_of(field_a, lambda), multiplier_of(field_b, lambda), mean_a, mean_b, scratch.expected,
+             scratch.companion);
+  const double power_a = mean_square(scratch.expected), power_b = mean_square(scratch.companion);
+  double expected_a = power_a, expected_b = power_b;
+  if (lambda == 0 && field_a != Field::slope_x && field_a != Field::slope_y) {
+    double unit_a = 0, unit_b = 0;
+    derive_two(multiplier_of(field_a, 1.0), multiplier_of(field_b, 1.0), unit_a, unit_b, scratch.unit,
+               scratch.unit_companion);
+    expected_a = mean_square(scratch.unit);
+    expected_b = mean_square(scratch.unit_companion);
+  }
+  judge(field_a, scratch.expected, mean_a, expected_a, 0, std::sqrt(power_b));
+  judge(field_b, scratch.companion, mean_b, expected_b, 0, std::sqrt(power_a));
 }
 
 // Each derived field against its definition applied to the height field (conventions

@@ -151,37 +151,47 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   // change by L, which is energy's to name, not a drift.
   const MeasuredLevel& level = a.measured_level();
   const double level_scale = level.rings >= 4 && level.level > 0 ? level.level : 1.0;
-  double worst_p = 1;
-  std::vector<Complex> phase;     // e^(−2iωt) per distinct ω of frame f
-  std::vector<double> coefficients;  // ±w per wave, frame by frame (2 × waves doubles, not × frames)
-  coefficients.reserve(2 * waves.size());
-  for (std::size_t f = 1; f < times.size(); ++f) {
+  // Each frame's law on its own (run side by side on the analysis' threads), then judged in
+  // frame order.
+  struct FrameChange {
+    double p = 1, z = 0, m0 = 0;
+  };
+  std::vector<FrameChange> changes(times.size());
+  detail::run_tasks(times.size() - 1, a.threads(), [&](std::size_t task) {
+    const std::size_t f = task + 1;
+    std::vector<Complex> phase;  // e^(−2iωt) per distinct ω of frame f
     phases_at(times[f], phase);
-    coefficients.clear();
+    std::vector<double> weights;  // w per wave (the law's coefficients are ±w)
+    weights.reserve(waves.size());
     double variance = 0;
     for (std::size_t i = 0; i < waves.size(); ++i) {
       const Wave& w = waves[i];
       const double weight =
           2 * std::sqrt(w.tau_plus * w.tau_minus) * std::abs(phase[by_omega.group[i]] - first_phase[by_omega.group[i]]);
       if (!(weight > 0)) continue;
-      coefficients.push_back(weight);
-      coefficients.push_back(-weight);
+      weights.push_back(weight);
       variance += 2 * weight * weight;
     }
     const double m0 = sums[f] / n;  // mean_square of frame f
     const double change = std::max(0.0, std::abs(m0 - m0_first) - rounding) / level_scale;
     // The law is symmetric: P(|D| ≥ d) = 2 P(D ≤ −d). No wave changes (every ω t the same
     // mod π): only rounding may move m0.
-    const double p = coefficients.empty() ? (change > 0 ? 0.0 : 1.0)
-                                          : std::min(1.0, 2 * stats::mixed_exponential_sum_cdf(coefficients, -change));
-    const double z = variance > 0 ? (m0 - m0_first) / (level_scale * std::sqrt(variance)) : (change > 0 ? INFINITY : 0.0);
-    if (p <= worst_p) {
-      worst_p = p;
-      worst_z = z;
+    changes[f].p = weights.empty() ? (change > 0 ? 0.0 : 1.0)
+                                   : std::min(1.0, 2 * stats::exponential_difference_sum_cdf(weights, -change));
+    changes[f].z = variance > 0 ? (m0 - m0_first) / (level_scale * std::sqrt(variance))
+                                : (change > 0 ? INFINITY : 0.0);
+    changes[f].m0 = m0;
+  });
+  double worst_p = 1;
+  for (std::size_t f = 1; f < times.size(); ++f) {
+    const FrameChange& c = changes[f];
+    if (c.p <= worst_p) {
+      worst_p = c.p;
+      worst_z = c.z;
       worst_frame = int(f);
     }
-    hs_min = std::min(hs_min, 4 * std::sqrt(m0));
-    hs_max = std::max(hs_max, 4 * std::sqrt(m0));
+    hs_min = std::min(hs_min, 4 * std::sqrt(c.m0));
+    hs_max = std::max(hs_max, 4 * std::sqrt(c.m0));
   }
   hs_min = std::min(hs_min, 4 * std::sqrt(m0_first));
   hs_max = std::max(hs_max, 4 * std::sqrt(m0_first));

@@ -90,14 +90,21 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const reference::OceanCase&
                                                      std::vector<double> travelling_power,
                                                      int threads);
 
+// Work that runs beside the groups, on their threads, once the passes over the frames are done
+// (the gate's power table): given the precision every frame showed, and τ(k) of the case while
+// the analysis holds it as given (null with a free scale, whose analysis scales it).
+using BesideChecks =
+    std::function<void(const FramePrecision& precision, const std::vector<double>* travelling_power)>;
+
 // The same on frames streamed from a source (io/frame_source.hpp): what the gate runs on a
-// case's files, whose memory is then a few frames', whatever their number.
+// case's files, whose memory is then a few frames', whatever their number. `beside`, when
+// given, is the first task beside the groups; its error is thrown before theirs.
 std::vector<OceanCheckReport> run_ocean_check_groups(const reference::OceanCase& ocean_case,
                                                      const FrameSource& frames,
                                                      const OceanCheckOptions& options,
                                                      const std::vector<OceanCheckGroup>& groups,
                                                      std::vector<double> travelling_power,
-                                                     int threads);
+                                                     int threads, const BesideChecks& beside = {});
 // Runs the checks named (all when empty) on `frames`, which must match the case's grid.
 // Throws InvalidInput for an unknown check name, mismatched grids or frames without height.
 OceanCheckReport run_ocean_checks(const reference::OceanCase& ocean_case,

@@ -31,9 +31,11 @@ struct PowerTable {
 // The table for one surface's case at family-wise `alpha`. `unit_roundoff` and
 // `storage_roundoff` are the frames' (FrameSequence's): those read, or, without frames, those of
 // [input] precision (float when it is not declared). `travelling_power`: τ(k) of the case on its
-// samples (ocean_checks.hpp's expected_travelling_power).
+// samples (ocean_checks.hpp's expected_travelling_power). Its pieces run on up to `threads`
+// threads; the table is the same on any number.
 PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_roundoff,
-                      double storage_roundoff, const std::vector<double>& travelling_power);
+                      double storage_roundoff, const std::vector<double>& travelling_power,
+                      int threads = 1);
 // The same from the case alone: its [input] precision, float when not declared.
 PowerTable gate_power(const CaseFile& case_file, double alpha, int threads = 1);
 

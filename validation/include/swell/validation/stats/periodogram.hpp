@@ -78,6 +78,13 @@ void field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
 void field_from_spectrum(const reference::Sampling& sampling,
                          const std::function<void(std::span<std::complex<double>>)>& fill,
                          std::vector<double>& field);
+// Two real fields from one inverse transform: `fill` writes A + iB, where A and B are each the
+// spectrum of a real field (Hermitian); the real part of the result is A's field, the imaginary
+// part B's. Each carries the transform's rounding of the other besides its own (a few fp64 ulps
+// of the other's size, log₂N-fold at most).
+void fields_from_spectrum(const reference::Sampling& sampling,
+                          const std::function<void(std::span<std::complex<double>>)>& fill,
+                          std::vector<double>& real_field, std::vector<double>& imaginary_field);
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,
                                               const reference::Sampling& sampling, int threads = 1);
 std::vector<double> expected_periodogram(const std::vector<double>& travelling,

@@ -46,6 +46,10 @@ class WeightedExponentialSum {
 double mixed_exponential_sum_cdf_at_zero(const std::vector<double>& coefficients);
 // P(Σ c_i E_i ≤ x): the same at any threshold x (K'(s) = x).
 double mixed_exponential_sum_cdf(const std::vector<double>& coefficients, double x);
+// P(Σ w_i (E_i − E'_i) ≤ x) for weights w_i > 0 (finite), E and E' independent Exp(1): the
+// law above of the coefficients w_1, −w_1, w_2, −w_2, …, each pair's terms taken together
+// (one division and one logarithm per pair; equal to it to rounding, ~10⁻¹⁴ relative).
+double exponential_difference_sum_cdf(const std::vector<double>& weights, double x);
 
 // Anderson–Darling statistic A² of a sample against a fully specified continuous distribution,
 // given the sample's CDF values u_i = F(x_i) (any order) and their logs of survival
