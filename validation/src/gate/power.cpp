@@ -102,9 +102,23 @@ Setup make_setup(const CaseFile& case_file, double alpha, double unit_roundoff,
   std::vector<std::pair<double, std::size_t>> order(s.waves.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = {s.waves[i].k, i};
   std::sort(order.begin(), order.end());
-  std::vector<Wave> sorted(s.waves.size());
-  for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = s.waves[order[i].second];
-  s.waves = std::move(sorted);
+  // Moved into place cycle by cycle (position i takes the wave at order[i]), without a second
+  // array of them.
+  constexpr std::size_t kPlaced = std::numeric_limits<std::size_t>::max();
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    if (order[i].second == kPlaced) continue;
+    const Wave first = s.waves[i];
+    for (std::size_t j = i;;) {
+      const std::size_t from = order[j].second;
+      order[j].second = kPlaced;
+      if (from == i) {
+        s.waves[j] = first;
+        break;
+      }
+      s.waves[j] = s.waves[from];
+      j = from;
+    }
+  }
   return s;
 }
 

@@ -425,7 +425,8 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t unit, co
     difference /= double(expected.size());
     const double scale = std::sqrt(std::max(expected_power, 1e-300));
     const double error = std::sqrt(difference) / scale;
-    const double own = jacobian ? jacobian_products : mean_square(expected);
+    const double expected_square = mean_square(expected);
+    const double own = jacobian ? jacobian_products : expected_square;
     // Rounding, in the stored numbers' unit roundoff u: of the stored height, carried into
     // the derived field by its multiplier (h_power·mean |m|²); of the stored field itself
     // (own); and of the engine's own inverse transform of this field, ≈ u log2 N relative in
@@ -433,7 +434,7 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t unit, co
     // transformed λ∂D terms shows first (the command line's property test).
     // (For J, each factor of its two products carries that error relative to itself.)
     const double transform = a.log2n() * a.log2n() *
-                             (jacobian ? std::max(mean_square(expected), jacobian_products) : mean_square(expected));
+                             (jacobian ? std::max(expected_square, jacobian_products) : expected_square);
     const double rounding = std::sqrt(u * u * (h_power * mean_m2 + own + transform)) / scale;
     // Half storage: each stored value (the height's and the field's own) within s of itself,
     // s = 2⁻¹⁰; the height's error, white, carried by the multiplier. Its energy is bounded,

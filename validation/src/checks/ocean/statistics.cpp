@@ -151,36 +151,42 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   // change by L, which is energy's to name, not a drift.
   const MeasuredLevel& level = a.measured_level();
   const double level_scale = level.rings >= 4 && level.level > 0 ? level.level : 1.0;
-  // Each frame's law on its own (run side by side on the analysis' threads), then judged in
+  // Each frame's law on its own, the frames dealt out to the analysis' threads, then judged in
   // frame order.
   struct FrameChange {
     double p = 1, z = 0, m0 = 0;
   };
   std::vector<FrameChange> changes(times.size());
-  detail::run_tasks(times.size() - 1, a.threads(), [&](std::size_t task) {
-    const std::size_t f = task + 1;
-    std::vector<Complex> phase;  // e^(−2iωt) per distinct ω of frame f
-    phases_at(times[f], phase);
-    std::vector<double> weights;  // w per wave (the law's coefficients are ±w)
+  const std::size_t compared = times.size() - 1;
+  const std::size_t workers = std::min<std::size_t>(compared, std::size_t(std::max(1, a.threads())));
+  detail::run_tasks(workers, a.threads(), [&](std::size_t worker) {
+    std::vector<Complex> phase;    // e^(−2iωt) per distinct ω of frame f
+    std::vector<double> modulus;   // |e^(−2iωt) − e^(−2iωt0)| per distinct ω
+    std::vector<double> weights;   // w per wave (the law's coefficients are ±w)
     weights.reserve(waves.size());
-    double variance = 0;
-    for (std::size_t i = 0; i < waves.size(); ++i) {
-      const Wave& w = waves[i];
-      const double weight =
-          2 * std::sqrt(w.tau_plus * w.tau_minus) * std::abs(phase[by_omega.group[i]] - first_phase[by_omega.group[i]]);
-      if (!(weight > 0)) continue;
-      weights.push_back(weight);
-      variance += 2 * weight * weight;
+    for (std::size_t f = 1 + worker; f < times.size(); f += workers) {
+      phases_at(times[f], phase);
+      modulus.resize(phase.size());
+      for (std::size_t g = 0; g < phase.size(); ++g) modulus[g] = std::abs(phase[g] - first_phase[g]);
+      weights.clear();
+      double variance = 0;
+      for (std::size_t i = 0; i < waves.size(); ++i) {
+        const Wave& w = waves[i];
+        const double weight = 2 * std::sqrt(w.tau_plus * w.tau_minus) * modulus[by_omega.group[i]];
+        if (!(weight > 0)) continue;
+        weights.push_back(weight);
+        variance += 2 * weight * weight;
+      }
+      const double m0 = sums[f] / n;  // mean_square of frame f
+      const double change = std::max(0.0, std::abs(m0 - m0_first) - rounding) / level_scale;
+      // The law is symmetric: P(|D| ≥ d) = 2 P(D ≤ −d). No wave changes (every ω t the same
+      // mod π): only rounding may move m0.
+      changes[f].p = weights.empty() ? (change > 0 ? 0.0 : 1.0)
+                                     : std::min(1.0, 2 * stats::exponential_difference_sum_cdf(weights, -change));
+      changes[f].z = variance > 0 ? (m0 - m0_first) / (level_scale * std::sqrt(variance))
+                                  : (change > 0 ? INFINITY : 0.0);
+      changes[f].m0 = m0;
     }
-    const double m0 = sums[f] / n;  // mean_square of frame f
-    const double change = std::max(0.0, std::abs(m0 - m0_first) - rounding) / level_scale;
-    // The law is symmetric: P(|D| ≥ d) = 2 P(D ≤ −d). No wave changes (every ω t the same
-    // mod π): only rounding may move m0.
-    changes[f].p = weights.empty() ? (change > 0 ? 0.0 : 1.0)
-                                   : std::min(1.0, 2 * stats::exponential_difference_sum_cdf(weights, -change));
-    changes[f].z = variance > 0 ? (m0 - m0_first) / (level_scale * std::sqrt(variance))
-                                : (change > 0 ? INFINITY : 0.0);
-    changes[f].m0 = m0;
   });
   double worst_p = 1;
   for (std::size_t f = 1; f < times.size(); ++f) {
