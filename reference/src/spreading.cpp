@@ -22,7 +22,9 @@ double wrap_angle(double theta) {
 // ---------------------------------------------------------------- cos-2s
 
 Cos2s::Cos2s(Law law, double s_or_s_max, double omega_p, double wave_age)
-    : law_(law), s_or_s_max_(s_or_s_max), omega_p_(omega_p), wave_age_(wave_age) {}
+    : law_(law), s_or_s_max_(s_or_s_max), omega_p_(omega_p), wave_age_(wave_age) {
+  if (law_ == Law::constant) constant_normalization_ = normalization(s_or_s_max_);
+}
 
 std::shared_ptr<const Cos2s> Cos2s::constant(double s) {
   require(std::isfinite(s) && s >= 0, "s (cos-2s spreading exponent)", "finite and ≥ 0", s);
@@ -72,7 +74,7 @@ double Cos2s::normalization(double s) {
 double Cos2s::operator()(double omega, double theta) const {
   const double exponent = s(omega);
   const double c = std::cos(0.5 * wrap_angle(theta));  // ≥ 0 on (−π, π]
-  return normalization(exponent) * std::pow(c, 2 * exponent);
+  return (law_ == Law::constant ? constant_normalization_ : normalization(exponent)) * std::pow(c, 2 * exponent);
 }
 
 std::string Cos2s::name() const {

@@ -166,7 +166,12 @@ class ShapePower {
     normals_.resize(std::size_t(kShapeDraws) * rings_);
     for (double& x : normals_) x = normal(random);
     critical_ = boost::math::quantile(boost::math::complement(boost::math::chi_squared(2.0 * rings_), alpha / 2));
-    for (int r = 0; r < rings_; ++r) counts_.push_back((r + 1) * n / rings_ - r * n / rings_);
+    for (int r = 0; r < rings_; ++r) {
+      counts_.push_back((r + 1) * n / rings_ - r * n / rings_);
+      const int begin = r * n / rings_, end = (r + 1) * n / rings_;
+      const int stride = std::max(1, (end - begin) / 512);
+      for (int i = begin; i < end; i += stride) sampled_.push_back(&s.waves[std::size_t(i)]);
+    }
   }
   int rings() const { return rings_; }
   // The power against an engine whose energy is f × the case's on every wave.
@@ -174,18 +179,21 @@ class ShapePower {
     std::vector<double> shape(counts_.begin(), counts_.end()), scale(rings_, f);
     return power(shape, scale);
   }
-  // The power against an engine whose μ'/μ is `ratio(wave)`.
-  double power(const std::function<double(const Wave&)>& ratio) const {
+  // The waves whose μ'/μ the ring moments below read, in the order they read them: at most
+  // 512 per ring, evenly spread.
+  const std::vector<const Wave*>& sampled() const { return sampled_; }
+  // The power against an engine whose μ'/μ at each sampled() wave is `ratios`.
+  double power(const std::vector<double>& ratios) const {
     const int n = int(s_.waves.size());
     std::vector<double> shape(rings_), scale(rings_);
+    std::size_t next = 0;
     for (int r = 0; r < rings_; ++r) {
       const int begin = r * n / rings_, end = (r + 1) * n / rings_;
-      // At most 512 waves per ring, evenly spread, for the ring's two moments.
       const int stride = std::max(1, (end - begin) / 512);
       double sum = 0, squares = 0;
       int used = 0;
       for (int i = begin; i < end; i += stride, ++used) {
-        const double w = ratio(s_.waves[std::size_t(i)]);
+        const double w = ratios[next++];
         sum += w;
         squares += w * w;
       }
@@ -220,6 +228,7 @@ class ShapePower {
   const Setup& s_;
   int rings_ = 1;
   std::vector<int> counts_;
+  std::vector<const Wave*> sampled_;
   std::vector<double> normals_;
   double critical_ = 0;
 };
@@ -404,14 +413,19 @@ PowerLine gamma_power_line(const Setup& s, const reference::OceanCase& c, const 
     gamma.below = gamma.above = std::numeric_limits<double>::quiet_NaN();
   } else {
     const double gamma0 = found != c.spectrum.numbers.end() ? found->second : 3.3;
+    // The case's own Ψ(k) + Ψ(−k) at the waves the rings read, once for every γ'.
+    std::vector<double> own;
+    for (const Wave* w : shape.sampled()) own.push_back(s.psi->psi(w->kx, w->ky) + s.psi->psi(-w->kx, -w->ky));
     auto power_at = [&](double g) {
       reference::OceanCase other = c;
       other.spectrum.numbers["gamma"] = std::max(1.0, g);  // γ ≥ 1; γ0/(γ0) may round below it
       const auto psi = other.directional_spectrum();
-      return shape.power([&](const Wave& w) {
-        const double mine = s.psi->psi(w.kx, w.ky) + s.psi->psi(-w.kx, -w.ky);
-        return mine > 0 ? (psi->psi(w.kx, w.ky) + psi->psi(-w.kx, -w.ky)) / mine : 1.0;
-      });
+      std::vector<double> ratios(own.size());
+      for (std::size_t j = 0; j < own.size(); ++j) {
+        const Wave& w = *shape.sampled()[j];
+        ratios[j] = own[j] > 0 ? (psi->psi(w.kx, w.ky) + psi->psi(-w.kx, -w.ky)) / own[j] : 1.0;
+      }
+      return shape.power(ratios);
     };
     const double up = smallest_detected(1.001, 20, [&](double q) { return power_at(gamma0 * q) >= kPower; });
     const double lowest = 1 / gamma0;  // γ ≥ 1

@@ -45,6 +45,7 @@ class Cos2s final : public Spreading {
   Cos2s(Law law, double s_or_s_max, double omega_p, double wave_age);
   Law law_;
   double s_or_s_max_, omega_p_, wave_age_;
+  double constant_normalization_ = 0;  // G(s) of the constant law, made once (two lgamma per call were a third of Ψ's time)
 };
 
 // Donelan, Hamilton & Hui (1985) with Banner's (1990) high-frequency branch:
