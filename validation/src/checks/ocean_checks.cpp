@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <exception>
+#include <thread>
 #include <optional>
 
 #include "checks/ocean/analysis.hpp"
@@ -193,6 +195,24 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
   // all are read, to be stored in another precision than frame 0 said (a float frame among
   // halves) are analysed again in the precision of them all.
   std::optional<Analysis> analysis;
+  // `beside` runs on a thread of its own through the passes (which leave the cores idle while
+  // frames are decoded) once the analysis has taken the frames; with one thread, before the
+  // checks. It reads the analysis' τ, so it ends before the analysis does, whatever is thrown.
+  std::thread beside_thread;
+  std::exception_ptr beside_error;
+  struct JoinBeside {
+    std::thread& thread;
+    ~JoinBeside() {
+      if (thread.joinable()) thread.join();
+    }
+  } join_beside_on_exit{beside_thread};
+  auto run_beside = [&] {
+    try {
+      beside(analysis->precision(), options.free_scale ? nullptr : &analysis->travelling_power());
+    } catch (...) {
+      beside_error = std::current_exception();
+    }
+  };
   for (;;) {
     const bool settled = frames.precision_final();
     // τ is the case's (the caller's contract), so a second analysis evaluates it again rather
@@ -200,20 +220,28 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
     if (travelling_power.empty()) travelling_power = expected_travelling_power(ocean_case, threads);
     analysis.emplace(ocean_case, frames, options, std::move(travelling_power), threads);
     travelling_power.clear();
+    if (beside && threads > 1) beside_thread = std::thread(run_beside);
     analysis->pass();
+    if (beside_thread.joinable() && !(settled || frames.precision() == analysis->precision())) {
+      beside_thread.join();  // made again with the next analysis, in the precision of every frame
+      beside_error = nullptr;
+    }
     if (settled || frames.precision() == analysis->precision()) break;
   }
+  if (beside && threads <= 1) run_beside();
   if (any_group_reads("dispersion") && analysis->frame_count() >= 3) analysis->dispersion_pass();
   std::vector<OceanCheckReport> parts(groups.size());
-  const std::size_t first_group = beside ? 1 : 0;
-  detail::run_tasks(first_group + groups.size(), threads, [&](std::size_t task) {
-    if (task < first_group) {
-      beside(analysis->precision(), options.free_scale ? nullptr : &analysis->travelling_power());
-      return;
-    }
-    const std::size_t g = task - first_group;
-    parts[g] = run_on(*analysis, groups[g].checks, g == 0);
-  });
+  std::exception_ptr groups_error;
+  try {
+    detail::run_tasks(groups.size(), threads, [&](std::size_t g) {
+      parts[g] = run_on(*analysis, groups[g].checks, g == 0);
+    });
+  } catch (...) {
+    groups_error = std::current_exception();
+  }
+  if (beside_thread.joinable()) beside_thread.join();
+  if (beside_error) std::rethrow_exception(beside_error);
+  if (groups_error) std::rethrow_exception(groups_error);
   return parts;
 }
 

@@ -26,7 +26,9 @@ int statistical_check_count(SpectrumScale scale, std::size_t frames);
 // Throws InvalidInput, naming the figure and what to reduce, when one surface streamed through
 // the analysis (run_gate.cpp) needs more memory than the machine has available. What it needs
 // does not depend on the frame count; called before anything of the grid's size is read.
-void require_streamed_gate_memory(const reference::OceanCase& ocean, std::size_t fields, int threads);
+// `power_table`: the gate's power table is made beside the passes (a single surface's gate).
+void require_streamed_gate_memory(const reference::OceanCase& ocean, std::size_t fields, int threads,
+                                  bool power_table = false);
 // The same for a cascade set's set checks (cascade_checks.hpp): their sums per wave vector of
 // every cascade at once, beside the largest surface's analysis.
 void require_cascade_set_memory(const CaseFile& set, int threads);

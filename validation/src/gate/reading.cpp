@@ -19,33 +19,38 @@ using reference::Field;
 
 namespace {
 
-double streamed_bytes_per_sample(std::size_t ocean_fields, int threads) {
+double streamed_bytes_per_sample(std::size_t ocean_fields, int threads, bool power_table) {
   // Per sample, whatever the frame count: the analysis — μ and τ (16 bytes), frame 0's spectrum
   // (16), the half plane's wave vectors (40) and the resolved ones' positions among them (4),
   // their fit sums and ω groups (24), the pass's spectrum (16) and the derived check's |k| (8);
   // per thread its transform scratch (32) and a derived field (8); and per field two frames'
   // values (8 bytes each: the one judged and the one read ahead) and the float channels being
   // decoded (4). Measured: within 3 % of the heap's peak at 2048² (docs/gate.md §6).
+  // The power table, made beside the passes: its μ (8), the half plane's energy weights (4), the
+  // resolved waves (32), their sort keys (8) and what its pieces hold at once; 68 in all, as
+  // measured (the gate's peak at 4096² rose by 66 bytes per sample with the table beside).
   const double fields = double(std::max<std::size_t>(1, ocean_fields));
-  return 16 + 16 + 40 + 4 + 24 + 16 + 8 + (32.0 + 8) * threads + (2 * 8.0 + 4) * fields;
+  return 16 + 16 + 40 + 4 + 24 + 16 + 8 + (32.0 + 8) * threads + (2 * 8.0 + 4) * fields + (power_table ? 68 : 0);
 }
 
 }  // namespace
 
-void require_streamed_gate_memory(const reference::OceanCase& ocean, std::size_t ocean_fields, int threads) {
+void require_streamed_gate_memory(const reference::OceanCase& ocean, std::size_t ocean_fields, int threads,
+                                  bool power_table) {
   const auto sampling = ocean.sampling();
   const double fields = double(std::max<std::size_t>(1, ocean_fields));
-  const double per_sample = streamed_bytes_per_sample(ocean_fields, threads);
+  const double per_sample = streamed_bytes_per_sample(ocean_fields, threads, power_table);
   const double bytes = double(sampling.size()) * per_sample;
   const std::uint64_t available = reference::available_memory_bytes();
   if (available == 0 || bytes <= double(available)) return;
   throw InvalidInput(fmt::format(
       "swell gate needs about {} for the analysis of the {} ({} bytes per sample: the "
-      "accumulators per wave vector, the spectra and two frames of {} field{}), whatever the "
+      "accumulators per wave vector, the spectra{} and two frames of {} field{}), whatever the "
       "frame count, and the machine has {} available: use a smaller grid ([grid] n), fewer "
       "fields ([input]) or fewer threads (--threads {})",
-      reference::human_bytes(bytes), sampling.describe(), int(per_sample), int(fields),
-      fields == 1 ? "" : "s", reference::human_bytes(double(available)), threads));
+      reference::human_bytes(bytes), sampling.describe(), int(per_sample),
+      power_table ? ", the power table" : "", int(fields), fields == 1 ? "" : "s",
+      reference::human_bytes(double(available)), threads));
 }
 
 void require_cascade_set_memory(const CaseFile& set, int threads) {
@@ -70,7 +75,7 @@ void require_cascade_set_memory(const CaseFile& set, int threads) {
     const double samples = double(ocean.sampling().size());
     bytes += samples * (48 + 16 + 17 + 64 + (ocean.frames >= 3 ? 60.0 * double(lengths) : 0.0));
     largest_surface = std::max(
-        largest_surface, samples * streamed_bytes_per_sample(set.cascades[c].input.channels.size(), threads));
+        largest_surface, samples * streamed_bytes_per_sample(set.cascades[c].input.channels.size(), threads, false));
   }
   const std::uint64_t available = reference::available_memory_bytes();
   if (available == 0 || bytes + largest_surface <= double(available)) return;

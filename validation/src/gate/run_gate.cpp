@@ -23,7 +23,7 @@ GateReport read_and_judge(const CaseFile& case_file, const GateOptions& options,
   if (case_file.is_probe_case()) return read_and_judge_probes(case_file, options, start);
   const int threads = options.resolved_threads();
   const auto& ocean = case_file.ocean;
-  require_streamed_gate_memory(ocean, case_file.input.channels.size(), threads);
+  require_streamed_gate_memory(ocean, case_file.input.channels.size(), threads, options.power);
   // The rest of the sampling rule before any frame is read (a case no frames can satisfy is
   // refused as such, not as a missing file); the analysis applies it again in the frames'
   // stored format. τ(k) over the samples is evaluated once, on every thread, for this rule and

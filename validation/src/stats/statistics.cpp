@@ -87,7 +87,7 @@ double WeightedExponentialSum::cumulant(double s) const {
   return -sum_pairs_of_terms(weights_, [s](double w) { return std::array<double, 2>{log1p_near_zero(-w * s), 0.0}; })[0];
 }
 
-double WeightedExponentialSum::saddlepoint(double x) const {
+double WeightedExponentialSum::saddlepoint(double x, double* hint) const {
   // K'(s) = Σ w/(1 − w s) rises from 0 (s → −∞) to ∞ (s → 1/max w). Brackets: K'(−n/x) < x
   // since w/(1 + w|s|) < 1/|s|; K'((1 − max w/x)/max w) ≥ x from the largest term alone.
   const double n = double(weights_.size());
@@ -99,10 +99,14 @@ double WeightedExponentialSum::saddlepoint(double x) const {
     lo = 0;
     hi = (1 - max_weight_ / x) / max_weight_;
   }
-  // Start from the normal approximation K'(s) ≈ mean + variance·s when it lies inside the
-  // bracket (Newton then converges in a few steps), else from the bracket's middle.
-  double s = (x - mean_) / variance_;
+  // Start from the hint, or the normal approximation K'(s) ≈ mean + variance·s, when it lies
+  // inside the bracket (Newton then converges in a few steps), else from the bracket's middle.
+  double s = hint && *hint > lo && *hint < hi ? *hint : (x - mean_) / variance_;
   if (!(s > lo && s < hi)) s = 0.5 * (lo + hi);
+  const auto found = [hint](double root) {
+    if (hint) *hint = root;
+    return root;
+  };
   for (int iteration = 0; iteration < 200; ++iteration) {
     const auto [d1, d2] = sum_pairs_of_terms(weights_, [s](double w) {
       const double t = w / (1 - w * s);
@@ -112,27 +116,27 @@ double WeightedExponentialSum::saddlepoint(double x) const {
     if (f > 0) hi = s; else lo = s;
     double next = s - f / d2;  // Newton, kept inside the bracket
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::abs(next - s) <= 1e-15 * std::max(1.0, std::abs(s)) || hi - lo <= 1e-300) return next;
+    if (std::abs(next - s) <= 1e-15 * std::max(1.0, std::abs(s)) || hi - lo <= 1e-300) return found(next);
     s = next;
   }
-  return s;
+  return found(s);
 }
 
-double WeightedExponentialSum::tail(double x, bool upper) const {
+double WeightedExponentialSum::tail(double x, bool upper, double* hint) const {
   if (x <= 0) return upper ? 1.0 : 0.0;
   const double sd = std::sqrt(variance_);
   // Lugannani–Rice is 0/0 at the mean: interpolate across a small neighbourhood there.
   const double guard = 1e-3 * sd;
   if (std::abs(x - mean_) < guard) {
-    const double below = lugannani_rice(mean_ - guard, upper);
-    const double above = lugannani_rice(mean_ + guard, upper);
+    const double below = lugannani_rice(mean_ - guard, upper, hint);
+    const double above = lugannani_rice(mean_ + guard, upper, hint);
     return below + (above - below) * (x - (mean_ - guard)) / (2 * guard);
   }
-  return lugannani_rice(x, upper);
+  return lugannani_rice(x, upper, hint);
 }
 
-double WeightedExponentialSum::lugannani_rice(double x, bool upper) const {
-  const double s = saddlepoint(x);
+double WeightedExponentialSum::lugannani_rice(double x, bool upper, double* hint) const {
+  const double s = saddlepoint(x, hint);
   const double k2 = sum_pairs_of_terms(weights_, [s](double w) {
     const double t = w / (1 - w * s);
     return std::array<double, 2>{t * t, 0.0};
@@ -277,7 +281,9 @@ double WeightedExponentialSum::quantile(double p) const {
   // (Alefeld, Potra & Shi 1995) finds its root where bisection to 1e-14 took about 47 tail
   // evaluations, each a saddlepoint solve over up to 10⁵ weights (the gate computes some 200
   // quantiles).
-  auto f = [&](double x) { return upper ? (1 - p) - survival(x) : cdf(x) - p; };
+  // Each evaluation's Newton starts from the last one's saddlepoint.
+  double hint = std::numeric_limits<double>::quiet_NaN();
+  auto f = [&](double x) { return upper ? (1 - p) - tail(x, true, &hint) : tail(x, false, &hint) - p; };
   // First on a bracket stepped out from the quantile of the gamma law with the same mean and
   // variance (exact when the weights are equal), solved to 2⁻³¹ relative: the saddlepoint law
   // is itself good to O(1/n), and its quantiles are printed to 4 digits and compared between

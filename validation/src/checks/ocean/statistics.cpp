@@ -157,6 +157,9 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
     double p = 1, z = 0, m0 = 0;
   };
   std::vector<FrameChange> changes(times.size());
+  // 2 √(τ+ τ−) per wave, once for every frame.
+  std::vector<double> amplitude(waves.size());
+  for (std::size_t i = 0; i < waves.size(); ++i) amplitude[i] = 2 * std::sqrt(waves[i].tau_plus * waves[i].tau_minus);
   const std::size_t compared = times.size() - 1;
   const std::size_t workers = std::min<std::size_t>(compared, std::size_t(std::max(1, a.threads())));
   detail::run_tasks(workers, a.threads(), [&](std::size_t worker) {
@@ -171,8 +174,7 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
       weights.clear();
       double variance = 0;
       for (std::size_t i = 0; i < waves.size(); ++i) {
-        const Wave& w = waves[i];
-        const double weight = 2 * std::sqrt(w.tau_plus * w.tau_minus) * modulus[by_omega.group[i]];
+        const double weight = amplitude[i] * modulus[by_omega.group[i]];
         if (!(weight > 0)) continue;
         weights.push_back(weight);
         variance += 2 * weight * weight;

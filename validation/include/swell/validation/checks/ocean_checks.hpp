@@ -90,15 +90,17 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const reference::OceanCase&
                                                      std::vector<double> travelling_power,
                                                      int threads);
 
-// Work that runs beside the groups, on their threads, once the passes over the frames are done
-// (the gate's power table): given the precision every frame showed, and τ(k) of the case while
-// the analysis holds it as given (null with a free scale, whose analysis scales it).
+// Work that runs beside the analysis (the gate's power table): on a thread of its own through
+// the passes over the frames, which leave the cores idle while frames are decoded (with one
+// thread, after them, before the checks). Given the precision the frames show (frame 0's; run
+// again in the rare case that every frame, once read, shows another), and τ(k) of the case
+// while the analysis holds it as given (null with a free scale, whose analysis scales it).
 using BesideChecks =
     std::function<void(const FramePrecision& precision, const std::vector<double>* travelling_power)>;
 
 // The same on frames streamed from a source (io/frame_source.hpp): what the gate runs on a
 // case's files, whose memory is then a few frames', whatever their number. `beside`, when
-// given, is the first task beside the groups; its error is thrown before theirs.
+// given, runs as BesideChecks says; its error is thrown before the groups'.
 std::vector<OceanCheckReport> run_ocean_check_groups(const reference::OceanCase& ocean_case,
                                                      const FrameSource& frames,
                                                      const OceanCheckOptions& options,

@@ -30,10 +30,12 @@ class WeightedExponentialSum {
 
  private:
   // The lower (upper = false) or upper tail; Lugannani–Rice away from the mean.
-  double tail(double x, bool upper) const;
-  double lugannani_rice(double x, bool upper) const;
+  // `hint`, where given, is a saddlepoint to start Newton from (a neighbouring x's: a quantile's
+  // root search evaluates the tail at x close together), and receives this x's.
+  double tail(double x, bool upper, double* hint = nullptr) const;
+  double lugannani_rice(double x, bool upper, double* hint = nullptr) const;
   double cumulant(double s) const;  // K(s) = −Σ log(1 − w s)
-  double saddlepoint(double x) const;  // s with K'(s) = x
+  double saddlepoint(double x, double* hint = nullptr) const;  // s with K'(s) = x
   std::vector<double> weights_;
   double mean_ = 0, variance_ = 0, max_weight_ = 0;
 };
