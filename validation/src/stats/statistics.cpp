@@ -66,6 +66,33 @@ inline double log1p_near_zero(double x) {
   return x * (1 + x * (-1.0 / 2 + x * (1.0 / 3 + x * (-1.0 / 4 + x * (1.0 / 5 + x * (-1.0 / 6 + x * (1.0 / 7 + x * (-1.0 / 8))))))));
 }
 
+// s with K'(s) = x: Newton from s, kept inside the bracket (lo, hi) where K' rises;
+// `derivatives(s)` gives {K'(s), K''(s)}.
+template <typename Derivatives>
+double solve_saddlepoint(const Derivatives& derivatives, double x, double s, double lo, double hi) {
+  for (int iteration = 0; iteration < 300; ++iteration) {
+    const auto [d1, k2] = derivatives(s);
+    const double f = d1 - x;
+    if (f > 0) hi = s; else lo = s;
+    double next = s - f / k2;  // Newton inside the bracket
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::abs(next - s) <= 1e-15 * std::max(std::abs(s), 1e-300) || hi - lo <= 1e-15 * std::abs(s)) return next;
+    s = next;
+  }
+  return s;
+}
+
+// P(S ≤ x) by Lugannani–Rice at the saddlepoint s, with K(s) = k and K''(s) = k2; `normal` (the
+// normal law's value) where the formula is 0/0 at the mean.
+double lugannani_rice_lower(double x, double s, double k, double k2, double normal) {
+  const double r = (s > 0 ? 1 : -1) * std::sqrt(std::max(0.0, 2 * (s * x - k)));
+  const double q = s * std::sqrt(k2);
+  const double phi = std::exp(-0.5 * r * r) / std::sqrt(2 * std::numbers::pi);
+  const double correction = phi * (1 / r - 1 / q);
+  if (r == 0 || !std::isfinite(correction)) return normal;
+  return std::clamp(0.5 * std::erfc(-r / std::numbers::sqrt2) + correction, 0.0, 1.0);
+}
+
 }  // namespace
 
 WeightedExponentialSum::WeightedExponentialSum(std::vector<double> weights) {
@@ -186,32 +213,17 @@ double mixed_exponential_sum_cdf(const std::vector<double>& coefficients, double
   double hi = highest > 0 ? 1 / highest : std::numeric_limits<double>::max();
   double s = (x - mean) / variance;  // the normal approximation's saddlepoint
   if (!(s > lo && s < hi)) s = 0.5 * (std::max(lo, -1e300) + std::min(hi, 1e300));
-  for (int iteration = 0; iteration < 300; ++iteration) {
-    const auto [d1, k2] = sum_pairs_of_terms(c, [s](double v) {
-      const double t = v / (1 - v * s);
+  s = solve_saddlepoint([&c](double at) {
+    return sum_pairs_of_terms(c, [at](double v) {
+      const double t = v / (1 - v * at);
       return std::array<double, 2>{t, t * t};
     });
-    const double f = d1 - x;
-    if (f > 0) hi = s; else lo = s;
-    double next = s - f / k2;  // Newton inside the bracket
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::abs(next - s) <= 1e-15 * std::max(std::abs(s), 1e-300) || hi - lo <= 1e-15 * std::abs(s)) {
-      s = next;
-      break;
-    }
-    s = next;
-  }
+  }, x, s, lo, hi);
   const auto [k2, minus_k] = sum_pairs_of_terms(c, [s](double v) {
     const double t = v / (1 - v * s);
     return std::array<double, 2>{t * t, std::log1p(-v * s)};
   });
-  const double k = -minus_k;
-  const double r = (s > 0 ? 1 : -1) * std::sqrt(std::max(0.0, 2 * (s * x - k)));
-  const double q = s * std::sqrt(k2);
-  const double phi = std::exp(-0.5 * r * r) / std::sqrt(2 * std::numbers::pi);
-  const double correction = phi * (1 / r - 1 / q);
-  if (r == 0 || !std::isfinite(correction)) return 0.5 * std::erfc((mean - x) / sd / std::numbers::sqrt2);
-  return std::clamp(0.5 * std::erfc(-r / std::numbers::sqrt2) + correction, 0.0, 1.0);
+  return lugannani_rice_lower(x, s, -minus_k, k2, 0.5 * std::erfc((mean - x) / sd / std::numbers::sqrt2));
 }
 
 double exponential_difference_sum_cdf(const std::vector<double>& weights, double x) {
@@ -241,32 +253,14 @@ double exponential_difference_sum_cdf(const std::vector<double>& weights, double
     });
     return std::array<double, 2>{2 * sums[0], 2 * sums[1]};
   };
-  double k2 = 0;
-  for (int iteration = 0; iteration < 300; ++iteration) {
-    const auto [d1, second] = derivatives(s);
-    k2 = second;
-    const double f = d1 - x;
-    if (f > 0) hi = s; else lo = s;
-    double next = s - f / k2;  // Newton inside the bracket
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::abs(next - s) <= 1e-15 * std::max(std::abs(s), 1e-300) || hi - lo <= 1e-15 * std::abs(s)) {
-      s = next;
-      break;
-    }
-    s = next;
-  }
-  k2 = derivatives(s)[1];
+  s = solve_saddlepoint(derivatives, x, s, lo, hi);
+  const double k2 = derivatives(s)[1];
   const double k = -sum_pairs_of_terms(weights, [s](double w) {
     // log(1 − a²), as (1 − a)(1 + a) where a² is near 1 (1 − a is exact there).
     const double a = w * s;
     return std::array<double, 2>{std::abs(a) < 0.5 ? log1p_near_zero(-a * a) : std::log((1 - a) * (1 + a)), 0.0};
   })[0];
-  const double r = (s > 0 ? 1 : -1) * std::sqrt(std::max(0.0, 2 * (s * x - k)));
-  const double q = s * std::sqrt(k2);
-  const double phi = std::exp(-0.5 * r * r) / std::sqrt(2 * std::numbers::pi);
-  const double correction = phi * (1 / r - 1 / q);
-  if (r == 0 || !std::isfinite(correction)) return 0.5 * std::erfc(-x / sd / std::numbers::sqrt2);
-  return std::clamp(0.5 * std::erfc(-r / std::numbers::sqrt2) + correction, 0.0, 1.0);
+  return lugannani_rice_lower(x, s, k, k2, 0.5 * std::erfc(-x / sd / std::numbers::sqrt2));
 }
 
 double WeightedExponentialSum::two_sided_p(double x) const {

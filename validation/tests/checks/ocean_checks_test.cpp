@@ -191,20 +191,26 @@ TEST(SamplingLaws, RatioLawMatchesClosedFormAndSimulation) {
 // P(S ≤ x) = Σ over c_i < 0 of A_i e^(−x/c_i), A_i = Π_(j≠i) c_i/(c_i − c_j). The case is
 // statistics.hs_steady's: a change of m0 between frames is Σ w (E1 − E2) over a few dominant
 // waves, whose tails the normal law misses by orders of magnitude (printed here).
+// P(Σ c E ≤ x) for distinct coefficients and x < 0, by partial fractions (below).
+double mixed_sum_cdf_closed_form(const std::vector<double>& c, double x) {
+  double exact = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    if (c[i] > 0) continue;
+    double a = 1;
+    for (std::size_t j = 0; j < c.size(); ++j) {
+      if (j != i) a *= c[i] / (c[i] - c[j]);
+    }
+    exact += a * std::exp(-x / c[i]);
+  }
+  return exact;
+}
+
 TEST(SamplingLaws, MixedExponentialSumMatchesItsClosedFormInTheTail) {
   const std::vector<double> c = {1.0, 0.7, 0.2, -0.95, -0.65, -0.25};
   double variance = 0;
   for (double v : c) variance += v * v;
   for (double x : {-0.5, -2.0, -5.0, -9.0}) {
-    double exact = 0;
-    for (std::size_t i = 0; i < c.size(); ++i) {
-      if (c[i] > 0) continue;
-      double a = 1;
-      for (std::size_t j = 0; j < c.size(); ++j) {
-        if (j != i) a *= c[i] / (c[i] - c[j]);
-      }
-      exact += a * std::exp(-x / c[i]);
-    }
+    const double exact = mixed_sum_cdf_closed_form(c, x);
     const double saddlepoint = stats::mixed_exponential_sum_cdf(c, x);
     const double normal = 0.5 * std::erfc(-(x - 0.05) / std::sqrt(variance) / std::sqrt(2.0));
     std::printf("[ measure  ] P(S ≤ %g): exact %.4g, saddlepoint %.4g, normal %.4g\n", x, exact, saddlepoint, normal);
@@ -251,16 +257,7 @@ TEST(SamplingLaws, ExponentialDifferenceSumIsTheMixedLawOfItsPairs) {
   const std::vector<double> w = {1.0, 0.6, 0.25};
   const std::vector<double> c = {1.0, -1.0, 0.6, -0.6, 0.25, -0.25};
   for (double x : {-0.5, -2.0, -5.0, -9.0}) {
-    double exact = 0;
-    for (std::size_t i = 0; i < c.size(); ++i) {
-      if (c[i] > 0) continue;
-      double a = 1;
-      for (std::size_t j = 0; j < c.size(); ++j) {
-        if (j != i) a *= c[i] / (c[i] - c[j]);
-      }
-      exact += a * std::exp(-x / c[i]);
-    }
-    EXPECT_NEAR(stats::exponential_difference_sum_cdf(w, x) / exact, 1, 0.05) << "x = " << x;
+    EXPECT_NEAR(stats::exponential_difference_sum_cdf(w, x) / mixed_sum_cdf_closed_form(c, x), 1, 0.05) << "x = " << x;
   }
   EXPECT_EQ(stats::exponential_difference_sum_cdf({}, -1), 0);
   EXPECT_EQ(stats::exponential_difference_sum_cdf({}, 0), 1);
