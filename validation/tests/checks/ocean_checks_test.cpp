@@ -513,6 +513,33 @@ TEST(OceanChecks, OmegaBoundAllowsForTheRoundingOfBarelyResolvedWaves) {
   EXPECT_FALSE(find(run_ocean_checks(c, wrong), "dispersion.omega").passed);
 }
 
+// A two-peak sea whose six resolved waves below the frames' Nyquist frequency are of ~10⁻⁶ m
+// (Ochi–Hubble, 32² over 3.9 m of 2.8 cm water, 4 fp32 frames 0.11 s apart from t0 = 1029.5 s):
+// swell's own frames measured ω 1.000963 × the case's, 1.26 × the bound's rounding term when
+// that held the stored numbers' rounding alone (the soak property test's seed 172052623845534).
+// The engine's own inverse transform rounds the field by u log₂N too; with it the right frames
+// pass, and frames of the deep-water relation (ω 3.8× the case's here) still fail.
+TEST(OceanChecks, OmegaBoundAllowsForTheEnginesTransformRoundingOfWeakWaves) {
+  OceanCase c = drawn_case(Grid::create(32, 32, 3.92467, 3.92467),
+                           {"ochi-hubble",
+                            {{"hs1", 0.00041757}, {"tp1", 19.4341}, {"lambda1", 2.5127},
+                             {"hs2", 0.0711881}, {"tp2", 9.31425}, {"lambda2", 7.9749}},
+                            {}},
+                           0.0283861, -1.92032, -0.0446852, 4, 0.110928, 143950);
+  c.spreading = {"donelan-banner", {}, {}};
+  c.t0 = 1029.52;
+  const auto frames = swell::impls::Synthesizer(c, {"fftw", swell::impls::Precision::f32}).frames();
+  const auto report = run_ocean_checks(c, frames);
+  const CheckResult& omega = find(report, "dispersion.omega");
+  EXPECT_TRUE(omega.passed) << omega.reason;
+  EXPECT_GT(omega.measured, 5e-4) << "the case no longer measures weak waves: " << omega.reason;
+
+  OceanCase deep = c;
+  deep.depth = std::numeric_limits<double>::infinity();  // frames of deep water, judged against the case's
+  const auto wrong = swell::impls::Synthesizer(deep, {"fftw", swell::impls::Precision::f32}).frames();
+  EXPECT_FALSE(find(run_ocean_checks(c, wrong), "dispersion.omega").passed);
+}
+
 // A loop period longer than every wave's own period quantizes every ω to 0 (here a Phillips
 // sea on 1.3 cm of water, ω ≤ 0.03 rad/s, loop period 59 s: steps of 0.107 rad/s): nothing moves,
 // and the periods Tm01, Tm02 and Tp are infinite (m0/m1 = ∞, a case the soak property test

@@ -326,17 +326,19 @@ Results check_dispersion(const Analysis& a, OceanCheckReport& report) {
   std::vector<std::pair<double, double>> ratios;  // (ω measured / ω case, energy)
   std::vector<std::pair<double, double>> rounding;  // (what rounding can move that ratio by, energy)
   std::vector<MeasuredOmega> measured;
-  // The stored numbers' rounding is noise of power u² mean(h²)/N on each wave vector's
-  // coefficient in each frame (resolution_floor's), which moves the phase of a wave of power P
-  // by about √(noise/2P) a frame; a frequency fitted to F frames over a span T moves by that ×
-  // √(12/F)/T (the standard error of a regression slope). Six such errors, relative to ω: far
-  // below 10⁻⁶ for the waves that carry a sea's energy, but not for waves barely above the
-  // resolution floor, which are all a case leaves below the frames' Nyquist frequency when its
-  // energy lies above it.
+  // Rounding is noise on each wave vector's coefficient in each frame: the stored numbers'
+  // (power u² mean(h²)/N, resolution_floor's) and the engine's own inverse transform's, which
+  // is u log₂N of the field relative in L2 (the accuracy bound of every FFT, docs/transforms.md,
+  // as the derived check allows it): power u² mean(h²) (1 + log₂²N)/N in all. It moves the phase
+  // of a wave of power P by about √(noise/2P) a frame; a frequency fitted to F frames over a
+  // span T moves by that × √(12/F)/T (the standard error of a regression slope). Six such
+  // errors, relative to ω: far below 10⁻⁶ for the waves that carry a sea's energy, but not for
+  // waves barely above the resolution floor, which are all a case leaves below the frames'
+  // Nyquist frequency when its energy lies above it.
   const double frames = double(a.times().size());
   const double span = a.times().back() - a.times().front();
   const double stored = std::max(a.unit_roundoff(), a.storage_roundoff());
-  const double noise = stored * stored * a.mean_square0() / double(a.sample_count());
+  const double noise = stored * stored * a.mean_square0() * (1 + a.log2n() * a.log2n()) / double(a.sample_count());
   for (std::size_t i = 0; i < strongest.size(); ++i) {
     const WaveFit* f = strongest[i];
     const double omega = best_omega(f->wave->omega, max_omega, a.times(), pass.series[i]);
