@@ -92,7 +92,8 @@ GateReport judge(const CaseFile& case_file, const FrameSource& frames,
   }
 
   // The gate's power on this case (a single surface: a cascade set shares α otherwise), in the
-  // precision the frames showed, beside the checks on their threads once the frames are read.
+  // precision the frames show, on a thread of its own through the passes (ocean_checks.hpp's
+  // BesideChecks).
   const bool with_power = options.power && std::isnan(alpha_per_check);
   std::string no_power;
   BesideChecks make_power;
