@@ -12,6 +12,7 @@
 #include <limits>
 #include <numbers>
 
+#include "cumulant_terms.hpp"
 #include "swell/reference/errors.hpp"
 
 namespace swell::validation::stats {
@@ -35,36 +36,8 @@ double gamma_upper_p(double shape, double x) { return x <= 0 ? 1.0 : boost::math
 
 namespace {
 
-// Σ over the weights of f(w), in four interleaved partial sums added at the end ((s0 + s1) +
-// (s2 + s3)): the same double on any machine, and loops the compiler turns into vector code
-// (one running sum chains every addition on the last: the saddlepoint laws' loops over 10⁶
-// weights were bound by it). `f` returns the terms of two sums at once.
-template <typename Terms>
-std::array<double, 2> sum_pairs_of_terms(const std::vector<double>& weights, const Terms& f) {
-  double first[4] = {0, 0, 0, 0}, second[4] = {0, 0, 0, 0};
-  const std::size_t n = weights.size(), whole = n - n % 4;
-  for (std::size_t i = 0; i < whole; i += 4) {
-    for (int lane = 0; lane < 4; ++lane) {
-      const auto [a, b] = f(weights[i + std::size_t(lane)]);
-      first[lane] += a;
-      second[lane] += b;
-    }
-  }
-  for (std::size_t i = whole; i < n; ++i) {
-    const auto [a, b] = f(weights[i]);
-    first[i - whole] += a;
-    second[i - whole] += b;
-  }
-  return {(first[0] + first[1]) + (first[2] + first[3]), (second[0] + second[1]) + (second[2] + second[3])};
-}
-
-// log(1 + x): its Taylor series where |x| ≤ 2⁻⁸ (eight terms: the ninth is below 10⁻²⁰ of the
-// sum), std::log1p elsewhere. In the saddlepoint laws nearly every weight's |w s| is that
-// small, and the series costs a fraction of the library call.
-inline double log1p_near_zero(double x) {
-  if (!(std::abs(x) <= 0x1p-8)) return std::log1p(x);
-  return x * (1 + x * (-1.0 / 2 + x * (1.0 / 3 + x * (-1.0 / 4 + x * (1.0 / 5 + x * (-1.0 / 6 + x * (1.0 / 7 + x * (-1.0 / 8))))))));
-}
+using detail::log1p_near_zero;
+using detail::sum_pairs_of_terms;
 
 // s with K'(s) = x: Newton from s, kept inside the bracket (lo, hi) where K' rises;
 // `derivatives(s)` gives {K'(s), K''(s)}.
@@ -101,23 +74,20 @@ WeightedExponentialSum::WeightedExponentialSum(std::vector<double> weights) {
       throw NumericalError("WeightedExponentialSum: weight " + std::to_string(w) +
                            " is not finite and ≥ 0");
     }
-    if (w > 0) weights_.push_back(w);
   }
-  if (weights_.empty()) throw NumericalError("WeightedExponentialSum: no positive weight");
-  const auto [mean, variance] = sum_pairs_of_terms(weights_, [](double w) { return std::array<double, 2>{w, w * w}; });
+  std::erase(weights, 0.0);
+  if (weights.empty()) throw NumericalError("WeightedExponentialSum: no positive weight");
+  const auto [mean, variance] = sum_pairs_of_terms(weights, [](double w) { return std::array<double, 2>{w, w * w}; });
   mean_ = mean;
   variance_ = variance;
-  for (double w : weights_) max_weight_ = std::max(max_weight_, w);
-}
-
-double WeightedExponentialSum::cumulant(double s) const {
-  return -sum_pairs_of_terms(weights_, [s](double w) { return std::array<double, 2>{log1p_near_zero(-w * s), 0.0}; })[0];
+  terms_ = std::make_shared<const detail::CumulantTerms>(weights, false);
+  max_weight_ = terms_->largest();
 }
 
 double WeightedExponentialSum::saddlepoint(double x, double* hint) const {
   // K'(s) = Σ w/(1 − w s) rises from 0 (s → −∞) to ∞ (s → 1/max w). Brackets: K'(−n/x) < x
   // since w/(1 + w|s|) < 1/|s|; K'((1 − max w/x)/max w) ≥ x from the largest term alone.
-  const double n = double(weights_.size());
+  const double n = double(terms_->size());
   double lo, hi;
   if (x < mean_) {
     lo = -n / x;
@@ -135,10 +105,7 @@ double WeightedExponentialSum::saddlepoint(double x, double* hint) const {
     return root;
   };
   for (int iteration = 0; iteration < 200; ++iteration) {
-    const auto [d1, d2] = sum_pairs_of_terms(weights_, [s](double w) {
-      const double t = w / (1 - w * s);
-      return std::array<double, 2>{t, t * t};
-    });
+    const auto [d1, d2] = terms_->derivatives(s);
     const double f = d1 - x;
     if (f > 0) hi = s; else lo = s;
     double next = s - f / d2;  // Newton, kept inside the bracket
@@ -164,11 +131,8 @@ double WeightedExponentialSum::tail(double x, bool upper, double* hint) const {
 
 double WeightedExponentialSum::lugannani_rice(double x, bool upper, double* hint) const {
   const double s = saddlepoint(x, hint);
-  const double k2 = sum_pairs_of_terms(weights_, [s](double w) {
-    const double t = w / (1 - w * s);
-    return std::array<double, 2>{t * t, 0.0};
-  })[0];
-  const double r = (s > 0 ? 1 : -1) * std::sqrt(std::max(0.0, 2 * (s * x - cumulant(s))));
+  const auto [k, k2] = terms_->cumulant_and_curvature(s);
+  const double r = (s > 0 ? 1 : -1) * std::sqrt(std::max(0.0, 2 * (s * x - k)));
   const double q = s * std::sqrt(k2);
   const double phi = std::exp(-0.5 * r * r) / std::sqrt(2 * std::numbers::pi);
   const double correction = phi * (1 / r - 1 / q);
@@ -213,17 +177,10 @@ double mixed_exponential_sum_cdf(const std::vector<double>& coefficients, double
   double hi = highest > 0 ? 1 / highest : std::numeric_limits<double>::max();
   double s = (x - mean) / variance;  // the normal approximation's saddlepoint
   if (!(s > lo && s < hi)) s = 0.5 * (std::max(lo, -1e300) + std::min(hi, 1e300));
-  s = solve_saddlepoint([&c](double at) {
-    return sum_pairs_of_terms(c, [at](double v) {
-      const double t = v / (1 - v * at);
-      return std::array<double, 2>{t, t * t};
-    });
-  }, x, s, lo, hi);
-  const auto [k2, minus_k] = sum_pairs_of_terms(c, [s](double v) {
-    const double t = v / (1 - v * s);
-    return std::array<double, 2>{t * t, std::log1p(-v * s)};
-  });
-  return lugannani_rice_lower(x, s, -minus_k, k2, 0.5 * std::erfc((mean - x) / sd / std::numbers::sqrt2));
+  const detail::CumulantTerms terms(c, false);
+  s = solve_saddlepoint([&terms](double at) { return terms.derivatives(at); }, x, s, lo, hi);
+  const auto [k, k2] = terms.cumulant_and_curvature(s);
+  return lugannani_rice_lower(x, s, k, k2, 0.5 * std::erfc((mean - x) / sd / std::numbers::sqrt2));
 }
 
 double exponential_difference_sum_cdf(const std::vector<double>& weights, double x) {
@@ -246,20 +203,9 @@ double exponential_difference_sum_cdf(const std::vector<double>& weights, double
   double lo = -1 / largest, hi = 1 / largest;
   double s = x / variance;  // the normal approximation's saddlepoint
   if (!(s > lo && s < hi)) s = 0;
-  auto derivatives = [&](double at) {  // {K'(at), K''(at)}
-    const auto sums = sum_pairs_of_terms(weights, [at](double w) {
-      const double a = w * at, q = 1 / ((1 - a) * (1 + a));
-      return std::array<double, 2>{w * a * q, w * w * (1 + a * a) * q * q};
-    });
-    return std::array<double, 2>{2 * sums[0], 2 * sums[1]};
-  };
-  s = solve_saddlepoint(derivatives, x, s, lo, hi);
-  const double k2 = derivatives(s)[1];
-  const double k = -sum_pairs_of_terms(weights, [s](double w) {
-    // log(1 − a²), as (1 − a)(1 + a) where a² is near 1 (1 − a is exact there).
-    const double a = w * s;
-    return std::array<double, 2>{std::abs(a) < 0.5 ? log1p_near_zero(-a * a) : std::log((1 - a) * (1 + a)), 0.0};
-  })[0];
+  const detail::CumulantTerms terms(weights, true);
+  s = solve_saddlepoint([&terms](double at) { return terms.derivatives(at); }, x, s, lo, hi);
+  const auto [k, k2] = terms.cumulant_and_curvature(s);
   return lugannani_rice_lower(x, s, k, k2, 0.5 * std::erfc(-x / sd / std::numbers::sqrt2));
 }
 

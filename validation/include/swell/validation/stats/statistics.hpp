@@ -2,9 +2,14 @@
 // The sampling distributions the ocean checks judge by (docs/checks.md). A right surface's
 // periodogram ordinates over a half plane are independent exponentials, so most statistics
 // are weighted sums of exponentials or functions of them.
+#include <memory>
 #include <vector>
 
 namespace swell::validation::stats {
+
+namespace detail {
+class CumulantTerms;  // stats/cumulant_terms.hpp
+}
 
 // Standard normal: P(|Z| ≥ |z|).
 double normal_two_sided_p(double z);
@@ -34,9 +39,8 @@ class WeightedExponentialSum {
   // root search evaluates the tail at x close together), and receives this x's.
   double tail(double x, bool upper, double* hint = nullptr) const;
   double lugannani_rice(double x, bool upper, double* hint = nullptr) const;
-  double cumulant(double s) const;  // K(s) = −Σ log(1 − w s)
   double saddlepoint(double x, double* hint = nullptr) const;  // s with K'(s) = x
-  std::vector<double> weights_;
+  std::shared_ptr<const detail::CumulantTerms> terms_;  // K(s) = −Σ log(1 − w s) and its derivatives
   double mean_ = 0, variance_ = 0, max_weight_ = 0;
 };
 
