@@ -197,7 +197,8 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
   std::optional<Analysis> analysis;
   // `beside` runs on a thread of its own through the passes (which leave the cores idle while
   // frames are decoded) once the analysis has taken the frames; with one thread, before the
-  // checks. It reads the analysis' τ, so it ends before the analysis does, whatever is thrown.
+  // checks. It reads the analysis' τ, μ and half plane, so it ends before the analysis does,
+  // whatever is thrown.
   std::thread beside_thread;
   std::exception_ptr beside_error;
   struct JoinBeside {
@@ -208,7 +209,12 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const OceanCase& ocean_case
   } join_beside_on_exit{beside_thread};
   auto run_beside = [&] {
     try {
-      beside(analysis->precision(), options.free_scale ? nullptr : &analysis->travelling_power());
+      if (options.free_scale) {
+        beside(analysis->precision(), nullptr);
+      } else {
+        const CaseSamples samples{analysis->travelling_power(), analysis->mu(), analysis->half_plane()};
+        beside(analysis->precision(), &samples);
+      }
     } catch (...) {
       beside_error = std::current_exception();
     }

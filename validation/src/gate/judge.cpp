@@ -98,15 +98,18 @@ GateReport judge(const CaseFile& case_file, const FrameSource& frames,
   std::string no_power;
   BesideChecks make_power;
   if (with_power) {
-    make_power = [&](const FramePrecision& precision, const std::vector<double>* travelling) {
+    make_power = [&](const FramePrecision& precision, const CaseSamples* samples) {
       // A table the case's sampling cannot support (no resolved wave) is a note, never bad
       // input: the frames are still judged. A free-scale analysis holds τ scaled: the case's
       // own is evaluated again.
       try {
-        std::vector<double> own;
-        if (!travelling) own = expected_travelling_power(case_file.ocean, threads);
-        report.power = gate_power(case_file, options.alpha, precision.unit_roundoff,
-                                  precision.storage_roundoff, travelling ? *travelling : own, threads);
+        if (samples) {
+          report.power = gate_power(case_file, options.alpha, precision.unit_roundoff, precision.storage_roundoff,
+                                    *samples, threads);
+        } else {
+          report.power = gate_power(case_file, options.alpha, precision.unit_roundoff, precision.storage_roundoff,
+                                    expected_travelling_power(case_file.ocean, threads), threads);
+        }
       } catch (const InvalidInput& e) {
         report.power.reset();
         no_power = std::string("no power table: ") + e.what();

@@ -18,6 +18,7 @@
 #include <optional>
 #include <numeric>
 #include <random>
+#include <span>
 
 #include "common/parallel_tasks.hpp"
 #include "swell/reference/errors.hpp"
@@ -57,15 +58,23 @@ struct Setup {
   double mean_square = 0, floor = 0, u = kFp64, storage = 0, log2n = 1, alpha_per_check = 0;
   std::size_t count = 0;
   std::vector<double> half_plane_weights;  // 2μ over the half plane: the energy check's law
-  std::vector<double> mu;                  // μ(k) over the samples
+  std::span<const double> mu;              // μ(k) over the samples: the analysis' or own_mu
+  std::vector<double> own_mu;
 };
 
-Setup make_setup(const CaseFile& case_file, double alpha, double unit_roundoff,
-                 double storage_roundoff, const std::vector<double>& tau) {
-  Setup s;
+// The case on its samples as the table reads it, into `s` (which `s.mu` may point into): μ
+// and the resolved waves by |k|, taken from what the gate's analysis holds (`samples`) or
+// evaluated from τ — the same numbers, as the analysis evaluates them the same way.
+void make_setup(Setup& s, const CaseFile& case_file, double alpha, double unit_roundoff, double storage_roundoff,
+                const std::vector<double>& tau, const CaseSamples* samples) {
   const auto& c = case_file.ocean;
   const reference::Sampling sampling = c.sampling();
-  s.mu = expected_periodogram(tau, sampling);
+  if (samples) {
+    s.mu = samples->expected_periodogram;
+  } else {
+    s.own_mu = expected_periodogram(tau, sampling);
+    s.mu = s.own_mu;
+  }
   const auto& mu = s.mu;
   s.psi = c.directional_spectrum();
   s.count = sampling.size();
@@ -80,22 +89,22 @@ Setup make_setup(const CaseFile& case_file, double alpha, double unit_roundoff,
   for (int f = 0; f < c.frames; ++f) s.times.push_back(c.time(f));
   s.half_plane_weights.reserve(s.count / 2 + 1);
   s.waves.reserve(s.count / 2 + 1);
-  for (std::size_t e = 0; e < s.count; ++e) {
-    if (!sampling.carries_energy(e)) continue;
-    const auto [n, m] = sampling.wave_index(e);
-    if (!in_half_plane(n, m)) continue;
-    s.half_plane_weights.push_back(2 * mu[e]);
-    if (!(mu[e] >= s.floor && mu[e] > 0)) continue;
-    Wave w;
-    w.kx = n * sampling.dkx();
-    w.ky = m * sampling.dky();
-    w.k = std::hypot(w.kx, w.ky);
-    w.omega = c.omega(w.k);
-    w.theta = std::atan2(w.ky, w.kx);
-    w.tau_plus = tau[e];
-    w.tau_minus = tau[sampling.conjugate(e)];
-    w.mu = mu[e];
-    s.waves.push_back(w);
+  auto take = [&](double kx, double ky, double k, double omega, double theta, double tau_plus, double tau_minus,
+                  double wave_mu) {
+    s.half_plane_weights.push_back(2 * wave_mu);
+    if (!(wave_mu >= s.floor && wave_mu > 0)) return;
+    s.waves.push_back({kx, ky, k, omega, theta, tau_plus, tau_minus, wave_mu});
+  };
+  if (samples) {
+    for (const HalfPlaneWave& w : samples->half_plane) take(w.kx, w.ky, w.k, w.omega, w.theta, w.tau_plus, w.tau_minus, w.mu);
+  } else {
+    for (std::size_t e = 0; e < s.count; ++e) {
+      if (!sampling.carries_energy(e)) continue;
+      const auto [n, m] = sampling.wave_index(e);
+      if (!in_half_plane(n, m)) continue;
+      const double kx = n * sampling.dkx(), ky = m * sampling.dky(), k = std::hypot(kx, ky);
+      take(kx, ky, k, c.omega(k), std::atan2(ky, kx), tau[e], tau[sampling.conjugate(e)], mu[e]);
+    }
   }
   // By |k|, equal |k| in the samples' order (a stable sort's order), through a sort of (|k|,
   // position) keys: moving the 64-byte records themselves was most of the sort's time.
@@ -119,7 +128,6 @@ Setup make_setup(const CaseFile& case_file, double alpha, double unit_roundoff,
       j = from;
     }
   }
-  return s;
 }
 
 // The smallest x in [low, high] where `detects(x)` holds (to 0.3 %): the first of 17 sizes spaced evenly in
@@ -612,13 +620,17 @@ PowerLine lambda_power_line(const Setup& s, const reference::OceanCase& c) {
 
 }  // namespace
 
-PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_roundoff,
-                      double storage_roundoff, const std::vector<double>& travelling_power, int threads) {
+namespace {
+
+PowerTable make_power_table(const CaseFile& case_file, double alpha, double unit_roundoff, double storage_roundoff,
+                            const std::vector<double>& travelling_power, const CaseSamples* samples, int threads) {
   if (case_file.is_probe_case() || case_file.is_cascade_set()) {
     throw InvalidInput("the power table is made for one surface's case (not a probes case or a cascade set)");
   }
   require(alpha > 0 && alpha < 1, "alpha", "in (0, 1)", alpha);
-  const Setup s = make_setup(case_file, alpha, unit_roundoff, storage_roundoff, travelling_power);
+  Setup setup;
+  make_setup(setup, case_file, alpha, unit_roundoff, storage_roundoff, travelling_power, samples);
+  const Setup& s = setup;
   PowerTable table;
   table.power = kPower;
   table.alpha = alpha;
@@ -709,6 +721,19 @@ PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_round
     return std::find(order.begin(), order.end(), x.error) < std::find(order.begin(), order.end(), y.error);
   });
   return table;
+}
+
+}  // namespace
+
+PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_roundoff,
+                      double storage_roundoff, const std::vector<double>& travelling_power, int threads) {
+  return make_power_table(case_file, alpha, unit_roundoff, storage_roundoff, travelling_power, nullptr, threads);
+}
+
+PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_roundoff,
+                      double storage_roundoff, const CaseSamples& samples, int threads) {
+  return make_power_table(case_file, alpha, unit_roundoff, storage_roundoff, samples.travelling_power, &samples,
+                          threads);
 }
 
 PowerTable gate_power(const CaseFile& case_file, double alpha, int threads) {

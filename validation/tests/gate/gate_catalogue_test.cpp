@@ -382,6 +382,34 @@ TEST(OneCause, AnUndeclaredSpreadingMixIsNotCalledNonGaussian) {
 
 // ------------------------------------------------------------------ the gate's power
 
+// The table the gate makes beside its passes, from the analysis' τ, μ and half plane, is the one
+// made from the case alone (`swell gate --power`, which evaluates them itself): line for line,
+// to the bit.
+TEST(GatePower, TheGatesTableIsTheOneMadeFromTheCaseAlone) {
+  const OceanCase c = catalogue_case();
+  const CaseFile file = as_case_file(c);
+  GateOptions options;
+  options.threads = 2;
+  const auto report = swell::validation::run_gate(file, swell::test::render_surface(c), options);
+  ASSERT_TRUE(report.power.has_value());
+  const auto alone = swell::validation::gate_power(file, options.alpha, report.unit_roundoff, report.storage_roundoff,
+                                                   swell::validation::expected_travelling_power(c), 2);
+  ASSERT_EQ(report.power->lines.size(), alone.lines.size());
+  ASSERT_GE(alone.lines.size(), 5u);
+  for (std::size_t i = 0; i < alone.lines.size(); ++i) {
+    const auto &gate = report.power->lines[i], &own = alone.lines[i];
+    EXPECT_EQ(gate.error, own.error);
+    EXPECT_EQ(gate.smallest, own.smallest) << own.error;
+    EXPECT_EQ(gate.check, own.check) << own.error;
+    if (std::isfinite(own.above)) {
+      EXPECT_EQ(gate.above, own.above) << own.error;
+    }
+    if (std::isfinite(own.below)) {
+      EXPECT_EQ(gate.below, own.below) << own.error;
+    }
+  }
+}
+
 // The power table's sizes against measured detection (label "calibration"): 20 seeds of the test
 // engine (an implementation independent of the checks) with each statistical error at its
 // predicted size are detected by the named check at 90 % — between 13 and 20 of 20 (the binomial

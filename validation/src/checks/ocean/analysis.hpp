@@ -49,13 +49,7 @@ double mean_square(const std::vector<double>& v);
 std::string verdict(bool passed);
 
 // One energy-carrying wave vector k of the half plane (its partner −k is implied).
-struct Wave {
-  std::size_t index = 0, minus_index = 0;  // positions of k and −k in FFT order
-  double kx = 0, ky = 0, k = 0, omega = 0, theta = 0;
-  double mu = 0;         // E I(k) = τ(k) + τ(−k)
-  double tau_plus = 0;   // E|a|²: power travelling along +k
-  double tau_minus = 0;  // E|b|²: power travelling along −k
-};
+using Wave = HalfPlaneWave;
 
 // The resolved wave vectors (Analysis::waves()): a view of the half plane's, in its order, held
 // as their positions in it — one copy of each Wave (80 B), not two.

@@ -29,6 +29,8 @@
 #include <string_view>
 #include <vector>
 
+#include "swell/validation/checks/case_samples.hpp"
+
 #include "swell/reference/fields.hpp"
 #include "swell/reference/ocean_case.hpp"
 #include "swell/validation/io/frame_source.hpp"
@@ -93,10 +95,10 @@ std::vector<OceanCheckReport> run_ocean_check_groups(const reference::OceanCase&
 // Work that runs beside the analysis (the gate's power table): on a thread of its own through
 // the passes over the frames, which leave the cores idle while frames are decoded (with one
 // thread, after them, before the checks). Given the precision the frames show (frame 0's; run
-// again in the rare case that every frame, once read, shows another), and τ(k) of the case
-// while the analysis holds it as given (null with a free scale, whose analysis scales it).
-using BesideChecks =
-    std::function<void(const FramePrecision& precision, const std::vector<double>* travelling_power)>;
+// again in the rare case that every frame, once read, shows another), and the case's τ(k), μ(k)
+// and half plane while the analysis holds them as the case gives them (null with a free scale,
+// whose analysis scales them).
+using BesideChecks = std::function<void(const FramePrecision& precision, const CaseSamples* samples)>;
 
 // The same on frames streamed from a source (io/frame_source.hpp): what the gate runs on a
 // case's files, whose memory is then a few frames', whatever their number. `beside`, when

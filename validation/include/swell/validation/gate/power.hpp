@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "swell/validation/checks/case_samples.hpp"
+
 namespace swell::validation {
 
 struct CaseFile;
@@ -36,6 +38,10 @@ struct PowerTable {
 PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_roundoff,
                       double storage_roundoff, const std::vector<double>& travelling_power,
                       int threads = 1);
+// The same from what the gate's analysis holds of the case (its τ, μ and half plane, as the
+// case gives them): the same table, without evaluating μ, |k|, ω and θ on every sample again.
+PowerTable gate_power(const CaseFile& case_file, double alpha, double unit_roundoff,
+                      double storage_roundoff, const CaseSamples& samples, int threads = 1);
 // The same from the case alone: its [input] precision, float when not declared.
 PowerTable gate_power(const CaseFile& case_file, double alpha, int threads = 1);
 
