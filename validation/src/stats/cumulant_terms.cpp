@@ -14,7 +14,10 @@ constexpr int kLowestExponent = std::numeric_limits<double>::min_exponent - std:
 constexpr int kHighestExponent = std::numeric_limits<double>::max_exponent - 1;
 }  // namespace
 
-CumulantTerms::CumulantTerms(std::span<const double> values, bool pairs) : pairs_(pairs) {
+void CumulantTerms::assign(std::span<const double> values, bool pairs) {
+  pairs_ = pairs;
+  largest_ = 0;
+  groups_.clear();
   std::vector<std::size_t> count(std::size_t(kHighestExponent - kLowestExponent + 1), 0);
   std::size_t nonzero = 0;
   for (double v : values) {

@@ -54,7 +54,11 @@ inline double log1p_near_zero(double x) {
 // only the few thousand largest coefficients are summed one by one.
 class CumulantTerms {
  public:
-  CumulantTerms(std::span<const double> values, bool pairs);
+  CumulantTerms() = default;
+  CumulantTerms(std::span<const double> values, bool pairs) { assign(values, pairs); }
+  // These values in place of the last ones, in the arrays they held: a law rebuilt frame after
+  // frame (statistics.hs_steady) costs no fresh pages.
+  void assign(std::span<const double> values, bool pairs);
   std::size_t size() const { return values_.size(); }
   double largest() const { return largest_; }  // max |c|
   // {K'(s), K''(s)}

@@ -177,7 +177,8 @@ double mixed_exponential_sum_cdf(const std::vector<double>& coefficients, double
   double hi = highest > 0 ? 1 / highest : std::numeric_limits<double>::max();
   double s = (x - mean) / variance;  // the normal approximation's saddlepoint
   if (!(s > lo && s < hi)) s = 0.5 * (std::max(lo, -1e300) + std::min(hi, 1e300));
-  const detail::CumulantTerms terms(c, false);
+  thread_local detail::CumulantTerms terms;  // its arrays kept for the thread's next law
+  terms.assign(c, false);
   s = solve_saddlepoint([&terms](double at) { return terms.derivatives(at); }, x, s, lo, hi);
   const auto [k, k2] = terms.cumulant_and_curvature(s);
   return lugannani_rice_lower(x, s, k, k2, 0.5 * std::erfc((mean - x) / sd / std::numbers::sqrt2));
@@ -203,7 +204,8 @@ double exponential_difference_sum_cdf(const std::vector<double>& weights, double
   double lo = -1 / largest, hi = 1 / largest;
   double s = x / variance;  // the normal approximation's saddlepoint
   if (!(s > lo && s < hi)) s = 0;
-  const detail::CumulantTerms terms(weights, true);
+  thread_local detail::CumulantTerms terms;  // its arrays kept for the thread's next law (hs_steady: one per frame)
+  terms.assign(weights, true);
   s = solve_saddlepoint([&terms](double at) { return terms.derivatives(at); }, x, s, lo, hi);
   const auto [k, k2] = terms.cumulant_and_curvature(s);
   return lugannani_rice_lower(x, s, k, k2, 0.5 * std::erfc(-x / sd / std::numbers::sqrt2));

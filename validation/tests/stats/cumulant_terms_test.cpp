@@ -71,6 +71,23 @@ TEST(CumulantTerms, GroupedSumsAreTheDirectSumsAcrossTheDomain) {
   for (double f : {-0.99, -0.5, 0.2, 0.99}) expect_sums_match(small, true, f / 2e-150, "pairs of 1e-150");
 }
 
+// A law rebuilt in the arrays of the last one (hs_steady's, frame after frame) is the law built
+// afresh: nothing of the earlier values (more groups, larger values) remains.
+TEST(CumulantTerms, AssignedAgainIsTheLawBuiltAfresh) {
+  std::vector<double> wide, narrow;
+  for (int i = 0; i < 3000; ++i) wide.push_back(std::pow(10.0, -0.01 * i));
+  for (int i = 0; i < 500; ++i) narrow.push_back(0.2 + 1e-4 * i);
+  CumulantTerms reused(wide, false);
+  reused.assign(narrow, true);
+  const CumulantTerms fresh(narrow, true);
+  EXPECT_EQ(reused.size(), fresh.size());
+  EXPECT_EQ(reused.largest(), fresh.largest());
+  for (double s : {-4.0, -0.3, 0.0, 1e-5, 2.0, 4.0}) {
+    EXPECT_EQ(reused.derivatives(s), fresh.derivatives(s)) << "s = " << s;
+    EXPECT_EQ(reused.cumulant_and_curvature(s), fresh.cumulant_and_curvature(s)) << "s = " << s;
+  }
+}
+
 TEST(CumulantTerms, RefusesCoefficientsThatAreNotFinite) {
   const std::vector<double> not_a_number = {1.0, NAN}, infinite = {INFINITY}, with_zeros = {0.0, 2.0, 0.0};
   EXPECT_THROW(CumulantTerms(not_a_number, false), swell::NumericalError);
