@@ -1,6 +1,8 @@
 #include "cumulant_terms.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -12,6 +14,13 @@ namespace {
 // A double's binary exponents, subnormals included (std::ilogb's range for finite x ≠ 0).
 constexpr int kLowestExponent = std::numeric_limits<double>::min_exponent - std::numeric_limits<double>::digits;
 constexpr int kHighestExponent = std::numeric_limits<double>::max_exponent - 1;
+
+// std::ilogb(x) for finite x ≠ 0: read from the bits where x is normal (it is taken twice per
+// value), by the library for subnormals.
+inline int binary_exponent(double x) {
+  const int biased = int((std::bit_cast<std::uint64_t>(x) >> 52) & 0x7ff);
+  return biased != 0 ? biased - 1023 : std::ilogb(x);
+}
 }  // namespace
 
 void CumulantTerms::assign(std::span<const double> values, bool pairs) {
@@ -23,7 +32,7 @@ void CumulantTerms::assign(std::span<const double> values, bool pairs) {
   for (double v : values) {
     if (!std::isfinite(v)) throw NumericalError("saddlepoint law: a coefficient is not finite");
     if (v == 0) continue;  // −log(1 − 0 s) = 0
-    ++count[std::size_t(std::ilogb(v) - kLowestExponent)];
+    ++count[std::size_t(binary_exponent(v) - kLowestExponent)];
     ++nonzero;
     largest_ = std::max(largest_, std::abs(v));
   }
@@ -42,7 +51,7 @@ void CumulantTerms::assign(std::span<const double> values, bool pairs) {
   }
   values_.resize(nonzero);
   for (double v : values) {
-    if (v != 0) values_[next[std::size_t(std::ilogb(v) - kLowestExponent)]++] = v;
+    if (v != 0) values_[next[std::size_t(binary_exponent(v) - kLowestExponent)]++] = v;
   }
   std::size_t begin = 0;
   for (Group& group : groups_) {

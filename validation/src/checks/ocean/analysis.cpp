@@ -182,8 +182,7 @@ void Analysis::run_pass() const {
   // per distinct ω, Σ conj(e)², e = e^(−iωt).
   std::vector<Complex> r1(waves), r2(waves);
   std::vector<double> energy(waves);
-  p.groups = group_by_omega(shared_->resolved);
-  std::vector<Complex> s(p.groups.omegas.size());
+  std::vector<Complex> s;  // Σ conj(e)² per distinct ω, sized with the groups at frame 0
   // The dispersion pass (≥ 3 frames) reads each frame's ĥ at the resolved waves back from disk,
   // written a piece at a time.
   if (frames >= 3) p.spill = std::make_shared<SeriesSpill>(waves);
@@ -194,7 +193,7 @@ void Analysis::run_pass() const {
   const double scale = 1.0 / double(count_);
   const bool grid = !sampling_.is_lattice();
   std::vector<Complex> spectrum;   // ĥ of the frame in hand (after frame 0)
-  std::vector<Complex> phases(p.groups.omegas.size());  // e^(−iωt) per distinct ω
+  std::vector<Complex> phases;  // e^(−iωt) per distinct ω
   // Chunks of wave vectors, a few per thread, for whichever thread is free.
   const std::size_t wave_chunks = std::min<std::size_t>(waves, std::size_t(2 * threads_));
   const std::size_t derived_units = p.derived.units.size();
@@ -203,6 +202,14 @@ void Analysis::run_pass() const {
     detail::TaskPool pool(threads_);
     const KeepAnalysisScratch keep_scratch;
     frames_.stream({}, [&](std::size_t f, const reference::FieldFrame& frame) {
+      if (f == 0) {
+        // The distinct ω, once the reading of frame 1 has begun (a sort of the half plane: a
+        // fifth of a second at 2048²).
+        p.half_plane_groups = group_by_omega(shared_->half_plane);
+        p.groups = subset_groups(p.half_plane_groups, shared_->resolved.positions());
+        s.assign(p.groups.omegas.size(), Complex{});
+        phases.resize(p.groups.omegas.size());
+      }
       const std::vector<double>& h = height_of(frame, f);
       std::span<const Complex> hat;
       if (f == 0) {
@@ -383,6 +390,21 @@ void Analysis::progress(bool last, const std::function<std::string()>& message) 
       "frames ({}); store floats, or 16-bit integers with a value_range close to the values' "
       "extent",
       u, c.describe()));
+}
+
+OmegaGroups subset_groups(const OmegaGroups& all, const std::vector<std::size_t>& positions) {
+  constexpr std::size_t kAbsent = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> renumbered(all.omegas.size(), kAbsent);
+  for (std::size_t i : positions) renumbered[all.group[i]] = 0;
+  OmegaGroups out;
+  for (std::size_t g = 0; g < all.omegas.size(); ++g) {
+    if (renumbered[g] == kAbsent) continue;
+    renumbered[g] = out.omegas.size();
+    out.omegas.push_back(all.omegas[g]);
+  }
+  out.group.resize(positions.size());
+  for (std::size_t w = 0; w < positions.size(); ++w) out.group[w] = renumbered[all.group[positions[w]]];
+  return out;
 }
 
 double resolution_floor(double u, double mean_square_height, std::size_t count) {

@@ -61,6 +61,8 @@ class ResolvedWaves {
   std::size_t size() const { return positions_.size(); }
   bool empty() const { return positions_.empty(); }
   const Wave& operator[](std::size_t i) const { return (*half_plane_)[positions_[i]]; }
+  // Their positions in the half plane, ascending.
+  const std::vector<std::size_t>& positions() const { return positions_; }
 
   class const_iterator {
    public:
@@ -148,6 +150,10 @@ OmegaGroups group_by_omega(const Waves& waves) {
   }
   return out;
 }
+
+// group_by_omega of a subset of the waves `all` groups, given as their positions in them
+// (ascending): the same groups, numbered among those the subset holds, without a second sort.
+OmegaGroups subset_groups(const OmegaGroups& all, const std::vector<std::size_t>& positions);
 
 // One frame's energy where the case puts none: at k = 0, on wave vectors the sampling leaves
 // empty (a grid's Nyquist row and column) and where μ is below the resolution floor —
@@ -252,6 +258,9 @@ struct FramePass {
   // compute once per frame. The two-wave fit's sums per wave vector live in the pass alone:
   // what the checks read of them is Analysis::wave_fits().
   OmegaGroups groups;
+  // The distinct ω of the whole half plane (statistics.hs_steady's); `groups` is made from it.
+  // Both are made while frame 1 is read.
+  OmegaGroups half_plane_groups;
   // Each frame's ĥ at the resolved waves, on disk for the dispersion pass (≥ 3 frames;
   // series_spill.hpp); null or not ok() when it could not be written.
   std::shared_ptr<SeriesSpill> spill;

@@ -10,22 +10,20 @@ namespace swell::validation::ocean_analysis {
 // stay within the sampling law of what μ puts there plus rounding.
 Results check_spectrum(const Analysis& a, OceanCheckReport&) {
   const double alpha = a.options().alpha / 2;
-  std::vector<const Wave*> order;
   std::vector<NormalizedOrdinate> ordinates;
-  order.reserve(a.waves().size());
   ordinates.reserve(a.waves().size());
-  for (const Wave& w : a.waves()) {
-    order.push_back(&w);
-    ordinates.push_back({w.k, a.periodogram0(w.index) / w.mu});
-  }
-  std::sort(order.begin(), order.end(), [](const Wave* x, const Wave* y) { return x->k < y->k; });
-  const int n = int(order.size());
+  for (const Wave& w : a.waves()) ordinates.push_back({w.k, a.periodogram0(w.index) / w.mu});
+  const int n = int(ordinates.size());
   const RingShape shape = ring_shape(ordinates);
   const int rings = shape.rings;
   const double p = shape.p;
   // In the engine's terms: a band of |k| carrying twice its energy (two cascades overlapping).
   std::string shape_hint;
   if (p < alpha) {
+    std::vector<const Wave*> order;
+    order.reserve(a.waves().size());
+    for (const Wave& w : a.waves()) order.push_back(&w);
+    std::sort(order.begin(), order.end(), [](const Wave* x, const Wave* y) { return x->k < y->k; });
     int doubled = 0;
     double lowest = 1e300;
     for (int r = 0; r < rings; ++r) {

@@ -126,10 +126,10 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   const double m0_first = a.mean_square0();
   double worst_z = 0, hs_min = 1e300, hs_max = 0;
   int worst_frame = 0;
-  // e^(−2iωt) once per distinct ω and frame (group_by_omega; one per wave vector was 7 % of the
-  // gate's CPU at 512² × 64 frames).
+  // e^(−2iωt) once per distinct ω and frame (group_by_omega, made by the pass; one per wave
+  // vector was 7 % of the gate's CPU at 512² × 64 frames).
   const auto& waves = a.half_plane();
-  const OmegaGroups by_omega = group_by_omega(waves);
+  const OmegaGroups& by_omega = a.pass().half_plane_groups;
   auto phases_at = [&](double t, std::vector<Complex>& phases) {
     phases.resize(by_omega.omegas.size());
     for (std::size_t g = 0; g < by_omega.omegas.size(); ++g) {
