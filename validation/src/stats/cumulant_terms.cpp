@@ -79,6 +79,27 @@ std::size_t CumulantTerms::exact_groups(double s) const {
   return g;
 }
 
+// {K, K', K''} over the groups from `exact` on, by their series, smallest group first: with
+// t = s 2^(e+1) and r_k the group's power sums, K = Σ t^k r_k / k, K' = 2^(e+1) Σ t^(k−1) r_k and
+// K'' = 2^(2e+2) Σ (k − 1) t^(k−2) r_k.
+std::array<double, 3> CumulantTerms::series_sums(std::size_t exact, double s) const {
+  double cumulant = 0, first = 0, second = 0;
+  for (std::size_t g = groups_.size(); g-- > exact;) {
+    const auto& r = groups_[g].powers;
+    const double scale = std::ldexp(1.0, groups_[g].exponent + 1), t = s == 0 ? 0.0 : s * scale;
+    double k0 = r[kPowers - 1] / kPowers, d1 = r[kPowers - 1], d2 = double(kPowers - 1) * r[kPowers - 1];
+    for (int k = kPowers - 1; k >= 1; --k) {
+      k0 = r[std::size_t(k - 1)] / k + t * k0;
+      d1 = r[std::size_t(k - 1)] + t * d1;
+      if (k >= 2) d2 = double(k - 1) * r[std::size_t(k - 1)] + t * d2;
+    }
+    cumulant += t * k0;
+    first += scale * d1;
+    second += scale * scale * d2;
+  }
+  return {cumulant, first, second};
+}
+
 std::array<double, 2> CumulantTerms::derivatives(double s) const {
   const std::size_t exact = exact_groups(s);
   const std::span<const double> terms(values_.data(), exact == 0 ? 0 : groups_[exact - 1].end);
@@ -97,20 +118,8 @@ std::array<double, 2> CumulantTerms::derivatives(double s) const {
       return std::array<double, 2>{t, t * t};
     });
   }
-  // The rest by their series, smallest group first: with t = s 2^(e+1) and r_k the group's
-  // power sums, K' = 2^(e+1) Σ t^(k−1) r_k and K'' = 2^(2e+2) Σ (k − 1) t^(k−2) r_k.
-  double first = 0, second = 0;
-  for (std::size_t g = groups_.size(); g-- > exact;) {
-    const Group& group = groups_[g];
-    const auto& r = group.powers;
-    const double scale = std::ldexp(1.0, group.exponent + 1), t = s == 0 ? 0.0 : s * scale;
-    double d1 = r[kPowers - 1], d2 = double(kPowers - 1) * r[kPowers - 1];
-    for (int k = kPowers - 1; k >= 1; --k) d1 = r[std::size_t(k - 1)] + t * d1;
-    for (int k = kPowers - 1; k >= 2; --k) d2 = double(k - 1) * r[std::size_t(k - 1)] + t * d2;
-    first += scale * d1;
-    second += scale * scale * d2;
-  }
-  return {sums[0] + first, sums[1] + second};
+  const auto series = series_sums(exact, s);
+  return {sums[0] + series[1], sums[1] + series[2]};
 }
 
 std::array<double, 2> CumulantTerms::cumulant_and_curvature(double s) const {
@@ -130,19 +139,8 @@ std::array<double, 2> CumulantTerms::cumulant_and_curvature(double s) const {
       return std::array<double, 2>{-log1p_near_zero(-c * s), t * t};
     });
   }
-  // K = Σ t^k r_k / k over the rest, smallest group first.
-  double cumulant = 0, second = 0;
-  for (std::size_t g = groups_.size(); g-- > exact;) {
-    const Group& group = groups_[g];
-    const auto& r = group.powers;
-    const double scale = std::ldexp(1.0, group.exponent + 1), t = s == 0 ? 0.0 : s * scale;
-    double k0 = r[kPowers - 1] / kPowers, d2 = double(kPowers - 1) * r[kPowers - 1];
-    for (int k = kPowers - 1; k >= 1; --k) k0 = r[std::size_t(k - 1)] / k + t * k0;
-    for (int k = kPowers - 1; k >= 2; --k) d2 = double(k - 1) * r[std::size_t(k - 1)] + t * d2;
-    cumulant += t * k0;
-    second += scale * scale * d2;
-  }
-  return {sums[0] + cumulant, sums[1] + second};
+  const auto series = series_sums(exact, s);
+  return {sums[0] + series[0], sums[1] + series[2]};
 }
 
 }  // namespace swell::validation::stats::detail

@@ -75,6 +75,8 @@ class CumulantTerms {
   };
   // The number of leading groups summed term by term at s: those where |c s| may exceed 2⁻⁹.
   std::size_t exact_groups(double s) const;
+  // {K, K', K''} over the groups from `exact` on, through their power sums.
+  std::array<double, 3> series_sums(std::size_t exact, double s) const;
   std::vector<double> values_;  // by group, largest first; in their given order within one
   std::vector<Group> groups_;
   double largest_ = 0;
