@@ -127,7 +127,6 @@ Layout lay_out(const std::string& file, ImageKind kind, const ImageHeader& heade
                                    grid.nx, grid.ny));
   }
   const auto located = locate_channels(file, kind, header, input.channels);
-  const std::size_t count = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny);
   Layout layout;
   layout.first = int(header.channel_names.size());
   for (const auto& [field, index] : located) {

@@ -179,7 +179,7 @@ double mixed_exponential_sum_cdf(const std::vector<double>& coefficients, double
   if (!(s > lo && s < hi)) s = 0.5 * (std::max(lo, -1e300) + std::min(hi, 1e300));
   thread_local detail::CumulantTerms terms;  // its arrays kept for the thread's next law
   terms.assign(c, false);
-  s = solve_saddlepoint([&terms](double at) { return terms.derivatives(at); }, x, s, lo, hi);
+  s = solve_saddlepoint([](double at) { return terms.derivatives(at); }, x, s, lo, hi);
   const auto [k, k2] = terms.cumulant_and_curvature(s);
   return lugannani_rice_lower(x, s, k, k2, 0.5 * std::erfc((mean - x) / sd / std::numbers::sqrt2));
 }
@@ -206,7 +206,7 @@ double exponential_difference_sum_cdf(const std::vector<double>& weights, double
   if (!(s > lo && s < hi)) s = 0;
   thread_local detail::CumulantTerms terms;  // its arrays kept for the thread's next law (hs_steady: one per frame)
   terms.assign(weights, true);
-  s = solve_saddlepoint([&terms](double at) { return terms.derivatives(at); }, x, s, lo, hi);
+  s = solve_saddlepoint([](double at) { return terms.derivatives(at); }, x, s, lo, hi);
   const auto [k, k2] = terms.cumulant_and_curvature(s);
   return lugannani_rice_lower(x, s, k, k2, 0.5 * std::erfc(-x / sd / std::numbers::sqrt2));
 }
