@@ -47,13 +47,15 @@ constexpr int kShapeDraws = 1000, kDirectionDraws = 4000;
 constexpr std::size_t kMostEntries = 20000;
 
 // One resolved wave vector of the half plane, as the gate's analysis keeps it.
-struct Wave {
-  double kx = 0, ky = 0, k = 0, omega = 0, theta = 0, tau_plus = 0, tau_minus = 0, mu = 0;
-};
+using Wave = HalfPlaneWave;
 
 struct Setup {
   reference::DirectionalSpectrumPtr psi;
-  std::vector<Wave> waves;  // resolved, sorted by |k|
+  // The resolved waves sorted by |k|: pointers into the analysis' half plane, or into own_waves
+  // where the table evaluates them itself. Pointers (8 bytes) rather than copies (80): at 4096²
+  // the copies were half a gigabyte beside the gate's passes.
+  std::vector<const Wave*> waves;
+  std::vector<Wave> own_waves;
   std::vector<double> times;
   double mean_square = 0, floor = 0, u = kFp64, storage = 0, log2n = 1, alpha_per_check = 0;
   std::size_t count = 0;
@@ -88,46 +90,39 @@ void make_setup(Setup& s, const CaseFile& case_file, double alpha, double unit_r
   s.alpha_per_check = alpha / double(statistical_ocean_checks(case_file.scale == SpectrumScale::free, frames).size());
   for (int f = 0; f < c.frames; ++f) s.times.push_back(c.time(f));
   s.half_plane_weights.reserve(s.count / 2 + 1);
-  s.waves.reserve(s.count / 2 + 1);
-  auto take = [&](double kx, double ky, double k, double omega, double theta, double tau_plus, double tau_minus,
-                  double wave_mu) {
-    s.half_plane_weights.push_back(2 * wave_mu);
-    if (!(wave_mu >= s.floor && wave_mu > 0)) return;
-    s.waves.push_back({kx, ky, k, omega, theta, tau_plus, tau_minus, wave_mu});
-  };
+  auto resolved = [&](double wave_mu) { return wave_mu >= s.floor && wave_mu > 0; };
+  std::span<const Wave> candidates;
   if (samples) {
-    for (const HalfPlaneWave& w : samples->half_plane) take(w.kx, w.ky, w.k, w.omega, w.theta, w.tau_plus, w.tau_minus, w.mu);
+    for (const Wave& w : samples->half_plane) s.half_plane_weights.push_back(2 * w.mu);
+    candidates = samples->half_plane;
   } else {
     for (std::size_t e = 0; e < s.count; ++e) {
       if (!sampling.carries_energy(e)) continue;
       const auto [n, m] = sampling.wave_index(e);
       if (!in_half_plane(n, m)) continue;
-      const double kx = n * sampling.dkx(), ky = m * sampling.dky(), k = std::hypot(kx, ky);
-      take(kx, ky, k, c.omega(k), std::atan2(ky, kx), tau[e], tau[sampling.conjugate(e)], mu[e]);
+      s.half_plane_weights.push_back(2 * mu[e]);
+      if (!resolved(mu[e])) continue;
+      Wave w;
+      w.index = e;
+      w.minus_index = sampling.conjugate(e);
+      w.kx = n * sampling.dkx(), w.ky = m * sampling.dky(), w.k = std::hypot(w.kx, w.ky);
+      w.omega = c.omega(w.k);
+      w.theta = std::atan2(w.ky, w.kx);
+      w.mu = mu[e];
+      w.tau_plus = tau[e], w.tau_minus = tau[w.minus_index];
+      s.own_waves.push_back(w);
     }
+    candidates = s.own_waves;
   }
   // By |k|, equal |k| in the samples' order (a stable sort's order), through a sort of (|k|,
-  // position) keys: moving the 64-byte records themselves was most of the sort's time.
-  std::vector<std::pair<double, std::size_t>> order(s.waves.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = {s.waves[i].k, i};
-  std::sort(order.begin(), order.end());
-  // Moved into place cycle by cycle (position i takes the wave at order[i]), without a second
-  // array of them.
-  constexpr std::size_t kPlaced = std::numeric_limits<std::size_t>::max();
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    if (order[i].second == kPlaced) continue;
-    const Wave first = s.waves[i];
-    for (std::size_t j = i;;) {
-      const std::size_t from = order[j].second;
-      order[j].second = kPlaced;
-      if (from == i) {
-        s.waves[j] = first;
-        break;
-      }
-      s.waves[j] = s.waves[from];
-      j = from;
-    }
+  // position) keys.
+  std::vector<std::pair<double, std::size_t>> order;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (resolved(candidates[i].mu)) order.emplace_back(candidates[i].k, i);
   }
+  std::sort(order.begin(), order.end());
+  s.waves.resize(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) s.waves[i] = &candidates[order[i].second];
 }
 
 // The smallest x in [low, high] where `detects(x)` holds (to 0.3 %): the first of 17 sizes spaced evenly in
@@ -178,7 +173,7 @@ class ShapePower {
       counts_.push_back((r + 1) * n / rings_ - r * n / rings_);
       const int begin = r * n / rings_, end = (r + 1) * n / rings_;
       const int stride = std::max(1, (end - begin) / 512);
-      for (int i = begin; i < end; i += stride) sampled_.push_back(&s.waves[std::size_t(i)]);
+      for (int i = begin; i < end; i += stride) sampled_.push_back(s.waves[std::size_t(i)]);
     }
   }
   int rings() const { return rings_; }
@@ -271,15 +266,15 @@ class DirectionPower {
     // Both travelling waves of each resolved wave vector above the floor, every stride-th of
     // them kept (counted first: at 4096² the whole list was 400 MB for the 20000 kept).
     std::size_t count = 0;
-    for (const Wave& w : s.waves) count += std::size_t(w.tau_plus >= s.floor) + std::size_t(w.tau_minus >= s.floor);
+    for (const Wave* w : s.waves) count += std::size_t(w->tau_plus >= s.floor) + std::size_t(w->tau_minus >= s.floor);
     stride_ = std::max<std::size_t>(1, count / kMostEntries);
     std::size_t position = 0;
     auto keep = [&](const Entry& entry) {
       if (position++ % stride_ == 0) entries_.push_back(entry);
     };
-    for (const Wave& w : s.waves) {
-      if (w.tau_plus >= s.floor) keep({w.kx, w.ky, w.theta});
-      if (w.tau_minus >= s.floor) keep({-w.kx, -w.ky, w.theta + std::numbers::pi});
+    for (const Wave* w : s.waves) {
+      if (w->tau_plus >= s.floor) keep({w->kx, w->ky, w->theta});
+      if (w->tau_minus >= s.floor) keep({-w->kx, -w->ky, w->theta + std::numbers::pi});
     }
     std::array<double, 4> mean{};
     for (const Entry& e : entries_) {
@@ -402,12 +397,12 @@ double fits_energy_share(const Setup& s) {
   std::vector<Complex> phases, y(s.times.size());
   double all = 0, fitted = 0, phases_omega = -1;
   bool identifiable = false;
-  for (const Wave& w : s.waves) {
-    const double power = w.tau_plus + w.tau_minus;
+  for (const Wave* w : s.waves) {
+    const double power = w->tau_plus + w->tau_minus;
     all += power;
-    if (w.omega != phases_omega) {
-      phases_omega = w.omega;
-      two_wave_phases(w.omega, s.times, phases);
+    if (w->omega != phases_omega) {
+      phases_omega = w->omega;
+      two_wave_phases(w->omega, s.times, phases);
       Complex a, b;
       double residual = 0;
       identifiable = fit_two_waves(phases, y, a, b, residual);
@@ -467,22 +462,26 @@ double omega_epsilon(const Setup& s, std::string& omega_check) {
     const double share = fits_energy_share(s);
     const double bound = std::pow(rounding_budget(kCompoundRounding, s.u, s.log2n), 2) * std::max(1.0, share / 2) +
                          4 * s.storage * s.storage * share;
-    // The most energetic waves, ties in τ+ + τ− and in ω taken in |k| order (the waves' own):
-    // chosen in linear time, not by sorting every wave.
-    std::vector<const Wave*> strongest;
-    strongest.reserve(s.waves.size());
-    for (const Wave& w : s.waves) strongest.push_back(&w);
+    // The most energetic waves, ties in τ+ + τ− and in ω taken in |k| order (their places in
+    // s.waves): chosen in linear time, not by sorting every wave.
+    std::vector<std::size_t> ranks(s.waves.size());
+    std::iota(ranks.begin(), ranks.end(), std::size_t(0));
     constexpr std::size_t kMostWaves = 4000;
-    if (strongest.size() > kMostWaves) {
-      std::nth_element(strongest.begin(), strongest.begin() + kMostWaves - 1, strongest.end(),
-                       [](const Wave* x, const Wave* y) {
-                         const double px = x->tau_plus + x->tau_minus, py = y->tau_plus + y->tau_minus;
-                         return px > py || (px == py && x < y);
+    if (ranks.size() > kMostWaves) {
+      std::nth_element(ranks.begin(), ranks.begin() + kMostWaves - 1, ranks.end(),
+                       [&](std::size_t i, std::size_t j) {
+                         const Wave &x = *s.waves[i], &y = *s.waves[j];
+                         const double px = x.tau_plus + x.tau_minus, py = y.tau_plus + y.tau_minus;
+                         return px > py || (px == py && i < j);
                        });
-      strongest.resize(kMostWaves);
+      ranks.resize(kMostWaves);
     }
-    std::sort(strongest.begin(), strongest.end(),
-              [](const Wave* x, const Wave* y) { return x->omega < y->omega || (x->omega == y->omega && x < y); });
+    std::sort(ranks.begin(), ranks.end(), [&](std::size_t i, std::size_t j) {
+      const double x = s.waves[i]->omega, y = s.waves[j]->omega;
+      return x < y || (x == y && i < j);
+    });
+    std::vector<const Wave*> strongest(ranks.size());
+    for (std::size_t i = 0; i < ranks.size(); ++i) strongest[i] = s.waves[ranks[i]];
     // The fraction grows as ε² while εωT ≪ 1 (T the frames' span): from ε = 10⁻⁶, a few steps of
     // ε ← ε √(bound/fraction) reach the ε where it meets the bound (to 0.1 %).
     double e = 1e-6;
@@ -499,8 +498,8 @@ double omega_epsilon(const Setup& s, std::string& omega_check) {
     omega_check = "dispersion.residual";
     double dt = 0;
     for (std::size_t f = 1; f < s.times.size(); ++f) dt = std::max(dt, s.times[f] - s.times[f - 1]);
-    const bool below_nyquist = std::any_of(s.waves.begin(), s.waves.end(), [&](const Wave& w) {
-      return w.omega > 0 && 1.5 * w.omega < 0.95 * std::numbers::pi / dt;
+    const bool below_nyquist = std::any_of(s.waves.begin(), s.waves.end(), [&](const Wave* w) {
+      return w->omega > 0 && 1.5 * w->omega < 0.95 * std::numbers::pi / dt;
     });
     const double omega_bound = std::max(1e-6, rounding_budget(kCompoundRounding, s.u, s.log2n));
     if (below_nyquist && !(epsilon <= omega_bound)) epsilon = omega_bound, omega_check = "dispersion.omega";
@@ -521,8 +520,8 @@ PowerLine omega_power_line(const Setup& s, const reference::OceanCase& c, double
     line.method = "closed form";
     // At the peak k_p (the most energetic wave): ω ∝ √g, and ω² = g k tanh(k h).
     const auto peak = std::max_element(s.waves.begin(), s.waves.end(),
-                                       [](const Wave& x, const Wave& y) { return x.mu < y.mu; });
-    const double kp = peak->k;
+                                       [](const Wave* x, const Wave* y) { return x->mu < y->mu; });
+    const double kp = (*peak)->k;
     const double tanh0 = std::isinf(c.depth) ? 1.0 : std::tanh(kp * c.depth);
     const double shallower = std::pow(1 - epsilon, 2) * tanh0;
     line.note = fmt::format("g × {:.6g} or × {:.6g}; a depth of {:.4g} m instead of {} at the peak (k = {:.3g} rad/m)",

@@ -190,7 +190,6 @@ void Analysis::run_pass() const {
   std::vector<Complex> spill_piece(p.spill && p.spill->ok() ? std::min(waves, kSpillPiece) : 0);
   p.derived.start(*this);
   if (options_.analysis_backend != kAnalysisBackend) p.parseval.start(*this);
-  const double scale = 1.0 / double(count_);
   const bool grid = !sampling_.is_lattice();
   std::vector<Complex> spectrum;   // ĥ of the frame in hand (after frame 0)
   std::vector<Complex> phases;  // e^(−iωt) per distinct ω
@@ -215,9 +214,7 @@ void Analysis::run_pass() const {
       if (f == 0) {
         hat = shared_->spectrum0;
       } else {
-        const auto transform = analysis_transform(h, sampling_, &p.spectral_energies[f]);
-        spectrum.resize(count_);
-        for (std::size_t e = 0; e < count_; ++e) spectrum[e] = transform[e] * scale;
+        field_spectrum(h, sampling_, spectrum, &p.spectral_energies[f]);
         hat = spectrum;
       }
       {

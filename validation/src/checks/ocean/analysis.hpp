@@ -234,9 +234,11 @@ struct DerivedFold {
            std::span<const Complex> spectrum, double height_power);
   void finish();  // frees the arrays the pass reused
 
-  // The arrays one add() works in, kept for the next.
+  // The arrays one add() works in, kept for the next: its inverse transform's input and output
+  // (the fields are judged there), and the Jacobian's own.
   struct Scratch {
-    std::vector<double> expected, companion, dxx, dyy, dxy, unit, unit_companion;
+    InverseTransformArrays arrays;
+    std::vector<double> expected, dxx, dyy, dxy, unit;
   };
   Scratch& acquire();
   void release(Scratch& scratch);

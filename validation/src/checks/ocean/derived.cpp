@@ -239,6 +239,35 @@ Complex multiplier(Field field, double l, double kx, double ky, double k) {
   }
 }
 
+// A derived field's values where they lie: the real or the imaginary parts of an inverse
+// transform's output (every second double), or a vector of their own.
+struct FieldValues {
+  const double* first = nullptr;
+  std::size_t stride = 1, size = 0;
+  double operator[](std::size_t p) const { return first[p * stride]; }
+};
+
+// std::complex<double> is an array of two doubles, real part first ([complex.numbers]).
+FieldValues real_parts(std::span<const Complex> z) {
+  return {reinterpret_cast<const double*>(z.data()), 2, z.size()};
+}
+FieldValues imaginary_parts(std::span<const Complex> z) {
+  return {reinterpret_cast<const double*>(z.data()) + 1, 2, z.size()};
+}
+FieldValues values_of(const std::vector<double>& v) { return {v.data(), 1, v.size()}; }
+
+// The sum mean_square(std::vector) takes, in its order.
+double mean_square(FieldValues v) {
+  double sum = 0;
+  for (std::size_t p = 0; p < v.size; ++p) sum += v[p] * v[p];
+  return sum / double(v.size);
+}
+
+void assign(FieldValues v, std::vector<double>& into) {
+  into.resize(v.size);
+  for (std::size_t p = 0; p < v.size; ++p) into[p] = v[p];
+}
+
 }  // namespace
 
 DerivedFold::Scratch& DerivedFold::acquire() {
@@ -326,13 +355,14 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t unit, co
     Scratch& scratch;
     ~Release() { fold.release(scratch); }
   } release_on_exit{*this, scratch};
-  // The fields the multipliers m_a (and m_b) make of the height spectrum, into `into_a` (and
-  // `into_b`): written straight into the inverse transform's input, row by row (kx by column,
-  // ky by row on a grid). Two fields share one transform as m_a ĥ + i m_b ĥ: each m ĥ is the
-  // spectrum of a real field, so the real part of the result is the first field and the
-  // imaginary part the second, each with the transform's rounding of the other besides its own.
-  auto derive_into = [&](const auto& m_a, const auto* m_b, double& mean_a, double* mean_b,
-                         std::vector<double>& into_a, std::vector<double>* into_b) {
+  // The fields the multipliers m_a (and m_b) make of the height spectrum, as the real (and
+  // imaginary) parts of one inverse transform in this call's arrays: the spectrum is written
+  // straight into the transform's input, row by row (kx by column, ky by row on a grid). Two
+  // fields share one transform as m_a ĥ + i m_b ĥ: each m ĥ is the spectrum of a real field, so
+  // the real part of the result is the first field and the imaginary part the second, each with
+  // the transform's rounding of the other besides its own. Judged where the transform leaves
+  // them, not copied out: at 4096² each copy was 134 MB per thread.
+  auto derive_into = [&](const auto& m_a, const auto* m_b, double& mean_a, double* mean_b) {
     mean_a = 0;
     if (mean_b) *mean_b = 0;
     auto fill = [&](std::span<Complex> s) {
@@ -355,20 +385,16 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t unit, co
         }
       }
     };
-    if (m_b) {
-      fields_from_spectrum(g, fill, into_a, *into_b);
-      *mean_b /= double(spectrum.size());
-    } else {
-      field_from_spectrum(g, fill, into_a);
-    }
+    const auto fields = inverse_transform(g, scratch.arrays, fill);
+    if (m_b) *mean_b /= double(spectrum.size());
     mean_a /= double(spectrum.size());
+    return fields;
   };
-  auto derive = [&](const auto& m, double& mean_m2, std::vector<double>& into) {
-    derive_into(m, static_cast<decltype(&m)>(nullptr), mean_m2, nullptr, into, nullptr);
+  auto derive = [&](const auto& m, double& mean_m2) {
+    return real_parts(derive_into(m, static_cast<decltype(&m)>(nullptr), mean_m2, nullptr));
   };
-  auto derive_two = [&](const auto& m_a, const auto& m_b, double& mean_a, double& mean_b,
-                        std::vector<double>& into_a, std::vector<double>& into_b) {
-    derive_into(m_a, &m_b, mean_a, &mean_b, into_a, &into_b);
+  auto derive_two = [&](const auto& m_a, const auto& m_b, double& mean_a, double& mean_b) {
+    return derive_into(m_a, &m_b, mean_a, &mean_b);
   };
   // J − 1 from λ∂Dx/∂x (a), λ∂Dy/∂y (b), sharing one transform, and λ∂Dx/∂y (c) in another.
   // `leak`: the rms the shared transform's rounding of b brings into J through a, and of a
@@ -380,12 +406,14 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t unit, co
     auto m_a = [&](double kx, double, double k) { return Complex(-l * kx * kx / k); };
     auto m_b = [&](double, double ky, double k) { return Complex(-l * ky * ky / k); };
     if (paired) {
-      derive_two(m_a, m_b, m_xx, m_yy, dxx, dyy);
+      const auto both = derive_two(m_a, m_b, m_xx, m_yy);
+      assign(real_parts(both), dxx);
+      assign(imaginary_parts(both), dyy);
     } else {
-      derive(m_a, m_xx, dxx);
-      derive(m_b, m_yy, dyy);
+      assign(derive(m_a, m_xx), dxx);
+      assign(derive(m_b, m_yy), dyy);
     }
-    derive([&](double kx, double ky, double k) { return Complex(-l * kx * ky / k); }, m_xy, dxy);
+    assign(derive([&](double kx, double ky, double k) { return Complex(-l * kx * ky / k); }, m_xy), dxy);
     out.resize(dxx.size());
     products = 0;
     // The stored height's rounding reaches J through δJ = (1 + b) δa + (1 + a) δb − 2c δc: each
@@ -412,17 +440,17 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t unit, co
   // error (the field's expected mean square, or what λ = 1 would put there where λ = 0 makes it
   // zero); `leak` is the rms of what a transform shared with another field brings in, in units
   // of the analysis transform's relative rounding (0 for a transform of its own).
-  auto judge = [&](Field field, const std::vector<double>& expected, double mean_m2, double expected_power,
+  auto judge = [&](Field field, FieldValues expected, double mean_m2, double expected_power,
                    double jacobian_products, double leak) {
     const std::vector<double>& got = values.fields.at(field);
     const bool jacobian = field == Field::jacobian;
     // mean_square of the difference got − expected (J − 1 for the Jacobian), summed as it sums.
     double difference = 0;
-    for (std::size_t p = 0; p < expected.size(); ++p) {
+    for (std::size_t p = 0; p < expected.size; ++p) {
       const double d = (jacobian ? got[p] - 1 : got[p]) - expected[p];
       difference += d * d;
     }
-    difference /= double(expected.size());
+    difference /= double(expected.size);
     const double scale = std::sqrt(std::max(expected_power, 1e-300));
     const double error = std::sqrt(difference) / scale;
     const double expected_square = mean_square(expected);
@@ -459,43 +487,46 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t unit, co
       jacobian_minus_one(1.0, unit_m2, unit_products, unit_leak, scratch.unit);
       expected_power = mean_square(scratch.unit);
     }
-    judge(Field::jacobian, scratch.expected, mean_m2, expected_power, products, leak);
+    judge(Field::jacobian, values_of(scratch.expected), mean_m2, expected_power, products, leak);
     return;
   }
   // A field's expected rms measures its error, or, where λ = 0 makes a displacement zero, what
-  // λ = 1 would put there.
+  // λ = 1 would put there: that one derived first, as the field's own takes the same arrays.
   auto multiplier_of = [](Field field, double l) {
     return [field, l](double kx, double ky, double k) { return multiplier(field, l, kx, ky, k); };
   };
+  const auto unit_scale = [&](Field field) {
+    return lambda == 0 && field != Field::slope_x && field != Field::slope_y;
+  };
   if (second < 0) {
     const Field field = present[first];
-    double mean_m2 = 0;
-    derive(multiplier_of(field, lambda), mean_m2, scratch.expected);
-    double expected_power = mean_square(scratch.expected);
-    if (lambda == 0 && field != Field::slope_x && field != Field::slope_y) {
+    double expected_power = 0;
+    if (unit_scale(field)) {
       double unit_m2 = 0;
-      derive(multiplier_of(field, 1.0), unit_m2, scratch.unit);
-      expected_power = mean_square(scratch.unit);
+      expected_power = mean_square(derive(multiplier_of(field, 1.0), unit_m2));
     }
-    judge(field, scratch.expected, mean_m2, expected_power, 0, 0);
+    double mean_m2 = 0;
+    const FieldValues expected = derive(multiplier_of(field, lambda), mean_m2);
+    if (!unit_scale(field)) expected_power = mean_square(expected);
+    judge(field, expected, mean_m2, expected_power, 0, 0);
     return;
   }
   // A pair (slope_x, slope_y or disp_x, disp_y) in one transform.
   const Field field_a = present[first], field_b = present[std::size_t(second)];
-  double mean_a = 0, mean_b = 0;
-  derive_two(multiplier_of(field_a, lambda), multiplier_of(field_b, lambda), mean_a, mean_b, scratch.expected,
-             scratch.companion);
-  const double power_a = mean_square(scratch.expected), power_b = mean_square(scratch.companion);
-  double expected_a = power_a, expected_b = power_b;
-  if (lambda == 0 && field_a != Field::slope_x && field_a != Field::slope_y) {
+  double expected_a = 0, expected_b = 0;
+  if (unit_scale(field_a)) {
     double unit_a = 0, unit_b = 0;
-    derive_two(multiplier_of(field_a, 1.0), multiplier_of(field_b, 1.0), unit_a, unit_b, scratch.unit,
-               scratch.unit_companion);
-    expected_a = mean_square(scratch.unit);
-    expected_b = mean_square(scratch.unit_companion);
+    const auto unit_fields = derive_two(multiplier_of(field_a, 1.0), multiplier_of(field_b, 1.0), unit_a, unit_b);
+    expected_a = mean_square(real_parts(unit_fields));
+    expected_b = mean_square(imaginary_parts(unit_fields));
   }
-  judge(field_a, scratch.expected, mean_a, expected_a, 0, std::sqrt(power_b));
-  judge(field_b, scratch.companion, mean_b, expected_b, 0, std::sqrt(power_a));
+  double mean_a = 0, mean_b = 0;
+  const auto both = derive_two(multiplier_of(field_a, lambda), multiplier_of(field_b, lambda), mean_a, mean_b);
+  const FieldValues got_a = real_parts(both), got_b = imaginary_parts(both);
+  const double power_a = mean_square(got_a), power_b = mean_square(got_b);
+  if (!unit_scale(field_a)) expected_a = power_a, expected_b = power_b;
+  judge(field_a, got_a, mean_a, expected_a, 0, std::sqrt(power_b));
+  judge(field_b, got_b, mean_b, expected_b, 0, std::sqrt(power_a));
 }
 
 // Each derived field against its definition applied to the height field (conventions
