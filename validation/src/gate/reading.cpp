@@ -23,14 +23,17 @@ double streamed_bytes_per_sample(std::size_t ocean_fields, int threads, bool pow
   // Per sample, whatever the frame count: the analysis — μ and τ (16 bytes), frame 0's spectrum
   // (16), the half plane's wave vectors (40) and the resolved ones' positions among them (4),
   // their fit sums and ω groups (24), the pass's spectrum (16) and the derived check's |k| (8);
-  // per thread its transform scratch (32) and a derived field (8); and per field two frames'
-  // values (8 bytes each: the one judged and the one read ahead) and the float channels being
-  // decoded (4). Measured: within 3 % of the heap's peak at 2048² (docs/gate.md §6).
-  // The power table, made beside the passes: its μ (8), the half plane's energy weights (4), the
-  // resolved waves (32), their sort keys (8) and what its pieces hold at once; 68 in all, as
-  // measured (the gate's peak at 4096² rose by 66 bytes per sample with the table beside).
+  // the forward transform's input on the judging thread (16); per thread the FFTW plan's padded
+  // output (16) and a derived unit's transform input and output, where its fields are judged
+  // (32); and per field two frames' values (8 bytes each: the one judged and the one read
+  // ahead) and the float channels being decoded (4). The power table, made beside the passes:
+  // the half plane's energy weights (4), pointers to the resolved waves by |k| (4), their sort
+  // keys while it sorts (8) and its energy law's terms (4). An upper bound: measured at 4096²
+  // with h, dx, dy on two threads, the peak rose by 250 bytes per sample against 316 here
+  // (docs/gate.md §6); the derived units of three fields are fewer than the threads.
   const double fields = double(std::max<std::size_t>(1, ocean_fields));
-  return 16 + 16 + 40 + 4 + 24 + 16 + 8 + (32.0 + 8) * threads + (2 * 8.0 + 4) * fields + (power_table ? 68 : 0);
+  return 16 + 16 + 40 + 4 + 24 + 16 + 8 + 16 + (16.0 + 32) * threads + (2 * 8.0 + 4) * fields +
+         (power_table ? 20 : 0);
 }
 
 }  // namespace
