@@ -73,17 +73,16 @@ Scratch& scratch(int slot) {
 // Hermitian check measures how far ĥ(−k) is from conj ĥ(k), which r2c would make 0 by
 // construction. (r2c measured 20 % faster at 512²; the scratch arrays gained 3–5×.)
 namespace {
-// X, the unnormalised transform of `field`, in the calling thread's scratch(1); with `energy`,
-// Σ|X(k)|²/N too (the order and precision of check_parseval's sum).
-const Complex* transform_into_scratch(const std::vector<double>& field, const Grid& grid,
-                                      long double* energy) {
+// X, the unnormalised transform of `field`, into `out` (count entries, FFTW's planned alignment
+// or execute() copies); with `energy`, Σ|X(k)|²/N too (the order and precision of
+// check_parseval's sum). The input goes through the calling thread's scratch(0).
+void transform_into(const std::vector<double>& field, const Grid& grid, Complex* out, long double* energy) {
   const std::size_t count = std::size_t(grid.nx) * grid.ny;
   if (field.size() != count) {
     throw InvalidInput("field of " + std::to_string(field.size()) + " values for a grid of " +
                        std::to_string(grid.nx) + "×" + std::to_string(grid.ny));
   }
   auto* in = static_cast<Complex*>(scratch(0).get(count * sizeof(Complex)));
-  auto* out = static_cast<Complex*>(scratch(1).get(count * sizeof(Complex)));
   std::copy(field.begin(), field.end(), in);
   analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::forward).execute(in, out);
   if (energy) {
@@ -91,28 +90,23 @@ const Complex* transform_into_scratch(const std::vector<double>& field, const Gr
     for (std::size_t e = 0; e < count; ++e) sum += std::norm(out[e]);
     *energy = sum / (long double)count;
   }
+}
+
+// X in the calling thread's scratch(1).
+const Complex* transform_into_scratch(const std::vector<double>& field, const Grid& grid,
+                                      long double* energy) {
+  auto* out = static_cast<Complex*>(scratch(1).get(std::size_t(grid.nx) * grid.ny * sizeof(Complex)));
+  transform_into(field, grid, out, energy);
   return out;
 }
 
-// X straight into `spectrum` (FFTW's new-array execution wants the planned alignment, which a
-// vector's 16 bytes give; otherwise execute() copies), then divided there by N: the same bits
-// as X made in scratch(1) and copied out, without the scratch array.
+// X straight into `spectrum`, then divided there by N: the same bits as X made in scratch(1)
+// and copied out, without the scratch array.
 void spectrum_into(const std::vector<double>& field, const Grid& grid,
                    std::vector<std::complex<double>>& spectrum, long double* energy = nullptr) {
   const std::size_t count = std::size_t(grid.nx) * grid.ny;
-  if (field.size() != count) {
-    throw InvalidInput("field of " + std::to_string(field.size()) + " values for a grid of " +
-                       std::to_string(grid.nx) + "×" + std::to_string(grid.ny));
-  }
-  auto* in = static_cast<Complex*>(scratch(0).get(count * sizeof(Complex)));
-  std::copy(field.begin(), field.end(), in);
   spectrum.resize(count);
-  analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::forward).execute(in, spectrum.data());
-  if (energy) {
-    long double sum = 0;
-    for (std::size_t e = 0; e < count; ++e) sum += std::norm(spectrum[e]);
-    *energy = sum / (long double)count;
-  }
+  transform_into(field, grid, spectrum.data(), energy);
   const double scale = 1.0 / double(count);
   for (std::size_t e = 0; e < count; ++e) spectrum[e] *= scale;
   release_analysis_scratch();
