@@ -93,6 +93,19 @@ void Plan::execute(const Buffer& in, Buffer& out) const {
   execute(in_data, out_data);
 }
 
+void Plan::execute_over_input(void* data) const {
+  if (spec_.kind != Kind::c2c) {
+    throw UnsupportedTransform(spec_.describe() + ": only a c2c transform can be written back over its input");
+  }
+  if (spec_.placement == Placement::in_place) {
+    execute(data, data);
+    return;
+  }
+  HostBuffer out(spec_.output_bytes(), HostBuffer::Fill::none);
+  execute(data, out.host_data());
+  std::memcpy(data, out.host_data(), spec_.output_bytes());
+}
+
 void Plan::check_span(std::size_t in_element_bytes, std::size_t in_count,
                       std::size_t out_element_bytes, std::size_t out_count, bool aliased) const {
   const std::size_t real = real_size(spec_.precision);

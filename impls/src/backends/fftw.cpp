@@ -198,7 +198,9 @@ unsigned planner_flag(const std::string& planner) {
 template <typename T>
 class FftwPlan final : public Plan {
  public:
-  FftwPlan(const TransformSpec& spec, const std::string& planner, int threads) : Plan(spec) {
+  FftwPlan(const TransformSpec& spec, const std::string& planner, int threads,
+           std::shared_ptr<ScratchPool> scratch)
+      : Plan(spec), scratch_(std::move(scratch)) {
     using F = Fftw<T>;
     const unsigned flag = planner_flag(planner);
     const int n[2] = {spec.ny, spec.nx};  // FFTW: row-major, last dimension fastest
@@ -268,19 +270,9 @@ class FftwPlan final : public Plan {
     using F = Fftw<T>;
     const auto& s = spec();
     if (pitch_ > 0) {
-      const std::size_t row = std::size_t(s.nx) * sizeof(typename F::complex);
-      const std::size_t padded_row = std::size_t(pitch_) * sizeof(typename F::complex);
-      auto padded = scratch_.acquire(padded_bytes_);
-      if (F::alignment_of(in) == 0) {
-        F::execute_dft(plan_, in, padded.get());
-      } else {  // the plan wants the alignment it was planned with
-        auto in_copy = scratch_.acquire(s.input_bytes());
-        std::memcpy(in_copy.get(), in, s.input_bytes());
-        F::execute_dft(plan_, in_copy.get(), padded.get());
-      }
-      for (int y = 0; y < s.ny; ++y) {
-        std::memcpy(static_cast<char*>(out) + y * row, padded.get() + y * padded_row, row);
-      }
+      auto padded = scratch_->acquire(padded_bytes_);
+      execute_padded(in, padded.get());
+      copy_out_of_padded_rows(padded.get(), out);
       return;
     }
     // New-array execution (thread safe) needs the planned alignment; otherwise go through
@@ -290,7 +282,7 @@ class FftwPlan final : public Plan {
       run(in, out);
       return;
     }
-    auto in_copy = scratch_.acquire(s.input_bytes());
+    auto in_copy = scratch_->acquire(s.input_bytes());
     std::memcpy(in_copy.get(), in, s.input_bytes());
     if (s.placement == Placement::in_place) {
       run(in_copy.get(), in_copy.get());
@@ -298,14 +290,54 @@ class FftwPlan final : public Plan {
     } else if (F::alignment_of(out) == 0) {
       run(in_copy.get(), out);
     } else {
-      auto out_copy = scratch_.acquire(s.output_bytes());
+      auto out_copy = scratch_->acquire(s.output_bytes());
       run(in_copy.get(), out_copy.get());
       std::memcpy(out, out_copy.get(), s.output_bytes());
     }
   }
   using Plan::execute;
 
+  // A padded plan leaves its result in the padded rows and copies it out anyway: copied back
+  // over the input, the caller needs no array of its own for it. Otherwise out of place into a
+  // kept array of the pool and copied back (the same arithmetic: the plan's, at its alignment).
+  void execute_over_input(void* data) const override {
+    const auto& s = spec();
+    if (s.kind != Kind::c2c || s.placement == Placement::in_place) {
+      Plan::execute_over_input(data);
+      return;
+    }
+    if (pitch_ > 0) {
+      auto padded = scratch_->acquire(padded_bytes_);
+      execute_padded(data, padded.get());
+      copy_out_of_padded_rows(padded.get(), data);
+      return;
+    }
+    auto out = scratch_->acquire(s.output_bytes());
+    execute(data, out.get());
+    std::memcpy(data, out.get(), s.output_bytes());
+  }
+
  private:
+  // The padded plan from `in` into `padded` (padded_bytes_, the pool's alignment).
+  void execute_padded(const void* in, char* padded) const {
+    using F = Fftw<T>;
+    if (F::alignment_of(in) == 0) {
+      F::execute_dft(plan_, in, padded);
+    } else {  // the plan wants the alignment it was planned with
+      auto in_copy = scratch_->acquire(spec().input_bytes());
+      std::memcpy(in_copy.get(), in, spec().input_bytes());
+      F::execute_dft(plan_, in_copy.get(), padded);
+    }
+  }
+  void copy_out_of_padded_rows(const char* padded, void* out) const {
+    using F = Fftw<T>;
+    const std::size_t row = std::size_t(spec().nx) * sizeof(typename F::complex);
+    const std::size_t padded_row = std::size_t(pitch_) * sizeof(typename F::complex);
+    for (int y = 0; y < spec().ny; ++y) {
+      std::memcpy(static_cast<char*>(out) + y * row, padded + y * padded_row, row);
+    }
+  }
+
   void run(const void* in, void* out) const {
     using F = Fftw<T>;
     switch (spec().kind) {
@@ -358,10 +390,12 @@ class FftwPlan final : public Plan {
   bool copy_input_ = false;
   int pitch_ = 0;  // > 0: rows padded to this many elements (pads_rows)
   std::size_t padded_bytes_ = 0;
-  // Aligned copies for execute(), kept between calls: allocating them anew each time cost
-  // more than the transform (fft2d/c2r/fftw/fp32/1024: 39 ms against 16.7 ms for FFTW's own
-  // transform; fresh pages fault in on every call).
-  mutable ScratchPool scratch_;
+  // Aligned copies and padded rows for execute(), kept between calls: allocating them anew
+  // each time cost more than the transform (fft2d/c2r/fftw/fp32/1024: 39 ms against 16.7 ms
+  // for FFTW's own transform; fresh pages fault in on every call). Shared by the backend's
+  // plans: a forward and an inverse transform of one size, run one after the other, use one
+  // padded array between them (at 4096² fp64, 268 MB), not one each.
+  std::shared_ptr<ScratchPool> scratch_;
 };
 
 class FftwBackend final : public Backend {
@@ -384,10 +418,10 @@ class FftwBackend final : public Backend {
     const std::string planner = options_.planner.empty() ? "measure" : options_.planner;
     const int threads = threads_for(spec);
     switch (spec.precision) {
-      case Precision::f32: return std::make_unique<FftwPlan<float>>(spec, planner, threads);
-      case Precision::f64: return std::make_unique<FftwPlan<double>>(spec, planner, threads);
+      case Precision::f32: return std::make_unique<FftwPlan<float>>(spec, planner, threads, scratch_);
+      case Precision::f64: return std::make_unique<FftwPlan<double>>(spec, planner, threads, scratch_);
       case Precision::f80:
-        return std::make_unique<FftwPlan<long double>>(spec, planner, threads);
+        return std::make_unique<FftwPlan<long double>>(spec, planner, threads, scratch_);
     }
     return nullptr;
   }
@@ -409,6 +443,7 @@ class FftwBackend final : public Backend {
 
  private:
   BackendOptions options_;
+  std::shared_ptr<ScratchPool> scratch_ = std::make_shared<ScratchPool>();
 };
 
 }  // namespace

@@ -22,17 +22,17 @@ namespace {
 double streamed_bytes_per_sample(std::size_t ocean_fields, int threads, bool power_table) {
   // Per sample, whatever the frame count: the analysis — μ and τ (16 bytes), frame 0's spectrum
   // (16), the half plane's wave vectors (40) and the resolved ones' positions among them (4),
-  // their fit sums and ω groups (24), the pass's spectrum (16) and the derived check's |k| (8);
-  // the forward transform's input on the judging thread (16); per thread the FFTW plan's padded
-  // output (16) and a derived unit's transform input and output, where its fields are judged
-  // (32); and per field two frames' values (8 bytes each: the one judged and the one read
-  // ahead) and the float channels being decoded (4). The power table, made beside the passes:
-  // the half plane's energy weights (4), pointers to the resolved waves by |k| (4), their sort
-  // keys while it sorts (8) and its energy law's terms (4). An upper bound: measured at 4096²
-  // with h, dx, dy on two threads, the peak rose by 250 bytes per sample against 316 here
-  // (docs/gate.md §6); the derived units of three fields are fewer than the threads.
+  // their fit sums and ω groups (24), the pass's spectrum (16, the forward transform's input
+  // and output) and the derived check's |k| (8); per thread the FFTW plan's padded rows (16,
+  // the forward transform's shared with a derived unit's) and a derived unit's array, which
+  // its spectrum is written into and transformed over, where its fields are judged (16); and
+  // per field two frames' values (8 bytes each: the one judged and the one read ahead) and
+  // the float channels being decoded (4). The power table, made beside the passes: the half
+  // plane's energy weights (4), pointers to the resolved waves by |k| (4), their sort keys
+  // while it sorts (8) and its energy law's terms (4). An upper bound (docs/gate.md §6): the
+  // derived units of three fields are fewer than the threads.
   const double fields = double(std::max<std::size_t>(1, ocean_fields));
-  return 16 + 16 + 40 + 4 + 24 + 16 + 8 + 16 + (16.0 + 32) * threads + (2 * 8.0 + 4) * fields +
+  return 16 + 16 + 40 + 4 + 24 + 16 + 8 + (16.0 + 16) * threads + (2 * 8.0 + 4) * fields +
          (power_table ? 20 : 0);
 }
 

@@ -38,8 +38,9 @@ const impls::Plan& analysis_plan(int nx, int ny, impls::Kind kind, impls::Direct
   return *plan;
 }
 
-// Aligned scratch arrays of the calling thread, kept between calls. FFTW's plans want the
-// alignment they were planned with (else execute() goes through two more aligned copies), and
+// An aligned scratch array of the calling thread, kept between calls, that each transform
+// writes its input into and transforms over itself. FFTW's plans want the alignment they were
+// planned with (else execute() goes through aligned copies), and
 // a fresh multi-megabyte array costs its page faults again on every call: at 512² they took as
 // long as the transform. Arrays above kKeepBytes are freed after use instead of kept.
 constexpr std::size_t kKeepBytes = std::size_t(64) << 20;
@@ -49,7 +50,7 @@ thread_local int keep_guards = 0;
 
 class Scratch {
  public:
-  // Not zeroed: every call writes the input whole, and the transform the output.
+  // Not zeroed: every call writes the input whole before the transform.
   void* get(std::size_t bytes) {
     if (!buffer_ || buffer_->bytes() < bytes) buffer_ = std::make_unique<impls::HostBuffer>(bytes, impls::HostBuffer::Fill::none);
     return buffer_->host_data();
@@ -62,9 +63,9 @@ class Scratch {
   std::unique_ptr<impls::HostBuffer> buffer_;
 };
 
-Scratch& scratch(int slot) {
-  thread_local Scratch buffers[2];
-  return buffers[slot];
+Scratch& scratch() {
+  thread_local Scratch buffer;
+  return buffer;
 }
 
 }  // namespace
@@ -75,16 +76,16 @@ Scratch& scratch(int slot) {
 namespace {
 // X, the unnormalised transform of `field`, into `out` (count entries, FFTW's planned alignment
 // or execute() copies); with `energy`, Σ|X(k)|²/N too (the order and precision of
-// check_parseval's sum). The input goes through the calling thread's scratch(0).
+// check_parseval's sum). The field is written into `out` as the transform's input and
+// transformed over itself: no input array besides it, the same bits.
 void transform_into(const std::vector<double>& field, const Grid& grid, Complex* out, long double* energy) {
   const std::size_t count = std::size_t(grid.nx) * grid.ny;
   if (field.size() != count) {
     throw InvalidInput("field of " + std::to_string(field.size()) + " values for a grid of " +
                        std::to_string(grid.nx) + "×" + std::to_string(grid.ny));
   }
-  auto* in = static_cast<Complex*>(scratch(0).get(count * sizeof(Complex)));
-  std::copy(field.begin(), field.end(), in);
-  analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::forward).execute(in, out);
+  std::copy(field.begin(), field.end(), out);
+  analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::forward).execute_over_input(out);
   if (energy) {
     long double sum = 0;
     for (std::size_t e = 0; e < count; ++e) sum += std::norm(out[e]);
@@ -92,15 +93,15 @@ void transform_into(const std::vector<double>& field, const Grid& grid, Complex*
   }
 }
 
-// X in the calling thread's scratch(1).
+// X in the calling thread's scratch().
 const Complex* transform_into_scratch(const std::vector<double>& field, const Grid& grid,
                                       long double* energy) {
-  auto* out = static_cast<Complex*>(scratch(1).get(std::size_t(grid.nx) * grid.ny * sizeof(Complex)));
+  auto* out = static_cast<Complex*>(scratch().get(std::size_t(grid.nx) * grid.ny * sizeof(Complex)));
   transform_into(field, grid, out, energy);
   return out;
 }
 
-// X straight into `spectrum`, then divided there by N: the same bits as X made in scratch(1)
+// X straight into `spectrum`, then divided there by N: the same bits as X made in scratch()
 // and copied out, without the scratch array.
 void spectrum_into(const std::vector<double>& field, const Grid& grid,
                    std::vector<std::complex<double>>& spectrum, long double* energy = nullptr) {
@@ -122,23 +123,21 @@ std::vector<std::complex<double>> field_spectrum(const std::vector<double>& fiel
 
 namespace {
 
-// The inverse transform of what `fill` writes into the calling thread's transform input.
+// The inverse transform of what `fill` writes into the calling thread's scratch, over it.
 // With `imaginary_field`, the imaginary part into it (two fields packed in one transform).
 void field_from_filled_spectrum(const Grid& grid, const std::function<void(std::span<Complex>)>& fill,
                                 std::vector<double>& field, std::vector<double>* imaginary_field = nullptr) {
   const std::size_t count = std::size_t(grid.nx) * grid.ny;
-  auto* in = static_cast<Complex*>(scratch(0).get(count * sizeof(Complex)));
-  auto* out = static_cast<Complex*>(scratch(1).get(count * sizeof(Complex)));
-  fill({in, count});
-  analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::inverse).execute(in, out);
+  auto* out = static_cast<Complex*>(scratch().get(count * sizeof(Complex)));
+  fill({out, count});
+  analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::inverse).execute_over_input(out);
   field.resize(count);
   for (std::size_t i = 0; i < count; ++i) field[i] = out[i].real();
   if (imaginary_field) {
     imaginary_field->resize(count);
     for (std::size_t i = 0; i < count; ++i) (*imaginary_field)[i] = out[i].imag();
   }
-  scratch(0).release_if_large();
-  scratch(1).release_if_large();
+  scratch().release_if_large();
 }
 
 void field_from_spectrum_into(const std::vector<std::complex<double>>& spectrum, const Grid& grid,
@@ -237,8 +236,7 @@ KeepAnalysisScratch::KeepAnalysisScratch() { ++keep_guards; }
 KeepAnalysisScratch::~KeepAnalysisScratch() { --keep_guards; }
 
 void release_analysis_scratch() {
-  scratch(0).release_if_large();
-  scratch(1).release_if_large();
+  scratch().release_if_large();
 }
 
 std::vector<double> field_from_spectrum(const std::vector<std::complex<double>>& spectrum,
@@ -272,16 +270,13 @@ std::span<const std::complex<double>> inverse_transform(
   const Grid grid = transform_shape(sampling);
   const std::size_t count = std::size_t(grid.nx) * grid.ny;
   const std::size_t bytes = count * sizeof(Complex);
-  for (auto* buffer : {&arrays.input_, &arrays.output_}) {
-    if (!*buffer || (*buffer)->bytes() != bytes) {
-      *buffer = std::make_unique<impls::HostBuffer>(bytes, impls::HostBuffer::Fill::none);
-    }
+  if (!arrays.data_ || arrays.data_->bytes() != bytes) {
+    arrays.data_ = std::make_unique<impls::HostBuffer>(bytes, impls::HostBuffer::Fill::none);
   }
-  auto* in = static_cast<Complex*>(arrays.input_->host_data());
-  auto* out = static_cast<Complex*>(arrays.output_->host_data());
-  fill({in, count});
-  analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::inverse).execute(in, out);
-  return {out, count};
+  auto* data = static_cast<Complex*>(arrays.data_->host_data());
+  fill({data, count});
+  analysis_plan(grid.nx, grid.ny, impls::Kind::c2c, impls::Direction::inverse).execute_over_input(data);
+  return {data, count};
 }
 
 std::vector<double> expected_travelling_power(const reference::DirectionalSpectrum& spectrum,

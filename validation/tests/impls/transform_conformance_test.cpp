@@ -676,4 +676,80 @@ TEST(TransformConformance, FftwEstimateOnPaddedRowsIsBitForBitFftwsOwnPlan) {
       Precision::f80, fftwl_plan_dft_2d, fftwl_execute, fftwl_destroy_plan, fftwl_forget_wisdom);
 }
 
+
+// execute_over_input writes back over its input exactly what execute writes into another
+// array: through FFTW's padded rows (64 fp64 complex rows are 1 KiB), its pool's array (48×20,
+// a 1-D 100, fp32), an input off FFTW's alignment, an in-place plan, and the default of a
+// backend without its own (naive, radix2). Fails if the write-back takes the wrong array or
+// misses rows, or if the padded rows are copied back at the wrong pitch.
+template <typename Real>
+void expect_over_input_is_execute(const std::string& backend_name, int nx, int ny, Precision precision,
+                                  Direction direction, Placement placement, bool shifted) {
+  const auto backend = make_backend(backend_name);
+  TransformSpec spec;
+  spec.nx = nx;
+  spec.ny = ny;
+  spec.precision = precision;
+  spec.direction = direction;
+  spec.placement = placement;
+  const auto plan = backend->plan(spec);
+  const std::size_t count = std::size_t(nx) * ny;
+  std::mt19937_64 rng(std::uint64_t(nx) * 1000 + ny);
+  std::normal_distribution<double> normal;
+  std::vector<std::complex<Real>> input(count + 1);
+  for (auto& z : input) z = {Real(normal(rng)), Real(normal(rng))};
+  std::complex<Real>* data = input.data() + (shifted ? 1 : 0);
+  std::vector<std::complex<Real>> expected(count), over(data, data + count);
+  if (placement == Placement::in_place) {
+    expected.assign(data, data + count);
+    plan->execute(expected.data(), expected.data());
+  } else {
+    plan->execute(data, expected.data());
+  }
+  std::vector<std::complex<Real>> holder(count + 1);
+  std::complex<Real>* target = holder.data() + (shifted ? 1 : 0);
+  std::copy(data, data + count, target);
+  plan->execute_over_input(target);
+  std::size_t differing = 0;
+  for (std::size_t e = 0; e < count; ++e) {
+    differing += target[e].real() != expected[e].real() || target[e].imag() != expected[e].imag();
+  }
+  EXPECT_EQ(differing, 0u) << backend_name << " " << spec.describe() << (shifted ? " shifted" : "");
+  // Not the input back: the transform happened.
+  EXPECT_NE(target[1], data[1]) << backend_name << " " << spec.describe();
+}
+
+TEST(TransformConformance, ExecuteOverInputIsBitForBitExecuteIntoAnotherArray) {
+  for (auto direction : {Direction::forward, Direction::inverse}) {
+    for (bool shifted : {false, true}) {
+      expect_over_input_is_execute<double>("fftw:planner=estimate", 64, 32, Precision::f64, direction,
+                                           Placement::out_of_place, shifted);
+      expect_over_input_is_execute<double>("fftw:planner=estimate", 48, 20, Precision::f64, direction,
+                                           Placement::out_of_place, shifted);
+      expect_over_input_is_execute<double>("fftw:planner=estimate", 100, 1, Precision::f64, direction,
+                                           Placement::out_of_place, shifted);
+      expect_over_input_is_execute<float>("fftw:planner=estimate", 128, 32, Precision::f32, direction,
+                                          Placement::out_of_place, shifted);
+    }
+    expect_over_input_is_execute<double>("fftw:planner=estimate", 64, 32, Precision::f64, direction,
+                                         Placement::in_place, false);
+    expect_over_input_is_execute<double>("naive", 12, 10, Precision::f64, direction, Placement::out_of_place,
+                                         false);
+    expect_over_input_is_execute<double>("radix2", 64, 32, Precision::f64, direction, Placement::out_of_place,
+                                         false);
+  }
+}
+
+TEST(TransformConformance, ExecuteOverInputRefusesRealTransforms) {
+  TransformSpec spec;
+  spec.nx = 16;
+  spec.ny = 8;
+  spec.kind = Kind::r2c;
+  for (const char* name : {"fftw:planner=estimate", "naive"}) {
+    const auto plan = make_backend(name)->plan(spec);
+    std::vector<double> data(16 * 8 * 2);
+    EXPECT_THROW(plan->execute_over_input(data.data()), UnsupportedTransform) << name;
+  }
+}
+
 }  // namespace

@@ -78,6 +78,11 @@ class Plan {
   // Host memory holding spec().input_bytes() and output_bytes(); `in` == `out` for in-place.
   // An out-of-place transform leaves its input unchanged, bit for bit.
   virtual void execute(const void* in, void* out) const = 0;
+  // A c2c plan's transform of `data` written back over it: bit for bit what execute(data, out)
+  // writes into another array, out of place or in place as planned, without the caller holding
+  // a second array. The default goes through a temporary one; a backend whose plan already
+  // passes through its own array (FFTW's padded rows) copies back from there.
+  virtual void execute_over_input(void* data) const;
   // Buffers from the same backend. The default uses their host memory.
   virtual void execute(const Buffer& in, Buffer& out) const;
 

@@ -356,12 +356,12 @@ void DerivedFold::add(const Analysis& a, std::size_t frame, std::size_t unit, co
     ~Release() { fold.release(scratch); }
   } release_on_exit{*this, scratch};
   // The fields the multipliers m_a (and m_b) make of the height spectrum, as the real (and
-  // imaginary) parts of one inverse transform in this call's arrays: the spectrum is written
-  // straight into the transform's input, row by row (kx by column, ky by row on a grid). Two
-  // fields share one transform as m_a ĥ + i m_b ĥ: each m ĥ is the spectrum of a real field, so
-  // the real part of the result is the first field and the imaginary part the second, each with
-  // the transform's rounding of the other besides its own. Judged where the transform leaves
-  // them, not copied out: at 4096² each copy was 134 MB per thread.
+  // imaginary) parts of one inverse transform in this call's array: the spectrum is written
+  // straight into it, row by row (kx by column, ky by row on a grid), and transformed over
+  // itself. Two fields share one transform as m_a ĥ + i m_b ĥ: each m ĥ is the spectrum of a
+  // real field, so the real part of the result is the first field and the imaginary part the
+  // second, each with the transform's rounding of the other besides its own. Judged where the
+  // transform leaves them, not copied out: at 4096² each copy was 134 MB per thread.
   auto derive_into = [&](const auto& m_a, const auto* m_b, double& mean_a, double* mean_b) {
     mean_a = 0;
     if (mean_b) *mean_b = 0;

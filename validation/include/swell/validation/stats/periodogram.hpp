@@ -90,10 +90,11 @@ void field_from_spectrum(const reference::Sampling& sampling,
 void fields_from_spectrum(const reference::Sampling& sampling,
                           const std::function<void(std::span<std::complex<double>>)>& fill,
                           std::vector<double>& real_field, std::vector<double>& imaginary_field);
-// Aligned complex arrays for an inverse analysis transform (inverse_transform), held by the
-// caller and kept between calls, not zeroed (each call writes every entry it reads): a pass
-// whose units of work each transform once keeps one pair per unit running at a time, where the
-// threads' own scratch (field_from_spectrum) holds a pair on every thread that ever ran one.
+// An aligned complex array for an inverse analysis transform (inverse_transform), held by the
+// caller and kept between calls, not zeroed (each call writes every entry it reads): the
+// spectrum is written into it and transformed over itself. A pass whose units of work each
+// transform once keeps one per unit running at a time, where the threads' own scratch
+// (field_from_spectrum) holds one on every thread that ever ran one.
 class InverseTransformArrays {
  public:
   InverseTransformArrays();
@@ -105,10 +106,10 @@ class InverseTransformArrays {
   friend std::span<const std::complex<double>> inverse_transform(
       const reference::Sampling&, InverseTransformArrays&,
       const std::function<void(std::span<std::complex<double>>)>&);
-  std::unique_ptr<impls::HostBuffer> input_, output_;
+  std::unique_ptr<impls::HostBuffer> data_;
 };
 // Σk s(k) e^(ik·x) of the spectrum s `fill` writes (all sampling.size() entries, FFT order),
-// complex, in `arrays`: valid until their next use. For s = A + iB with A and B each the
+// complex, in `arrays` (over the spectrum): valid until their next use. For s = A + iB with A and B each the
 // spectrum of a real field, the real part is A's field and the imaginary part B's, bit for bit
 // what fields_from_spectrum gives.
 std::span<const std::complex<double>> inverse_transform(
