@@ -686,12 +686,8 @@ template <typename Real>
 void expect_over_input_is_execute(const std::string& backend_name, int nx, int ny, Precision precision,
                                   Direction direction, Placement placement, bool shifted) {
   const auto backend = make_backend(backend_name);
-  TransformSpec spec;
-  spec.nx = nx;
-  spec.ny = ny;
-  spec.precision = precision;
-  spec.direction = direction;
-  spec.placement = placement;
+  const TransformSpec spec{
+      .nx = nx, .ny = ny, .direction = direction, .precision = precision, .placement = placement};
   const auto plan = backend->plan(spec);
   const std::size_t count = std::size_t(nx) * ny;
   std::mt19937_64 rng(std::uint64_t(nx) * 1000 + ny);
