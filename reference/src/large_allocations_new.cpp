@@ -23,12 +23,12 @@
 namespace {
 // glibc maps each malloc block above its mmap threshold on its own and unmaps it when freed;
 // but each such block freed raises the threshold to its size (up to 32 MiB), after which
-// blocks of that size come from its arenas, which keep what is freed resident. The libraries
-// swell's programs call (OpenEXR's decoding, FFTW's arrays) malloc and free blocks of 128 KiB
-// to 32 MiB over and over: `swell gate` at 2048² × 16 frames peaked at 1009 MB resident, and
-// at 903 MB with the threshold fixed at 2 MiB (7.8–8.6 s against 6.9–7.7 s). A threshold set
-// by mallopt stays where it is set.
-[[maybe_unused]] const bool mmap_threshold_fixed = mallopt(M_MMAP_THRESHOLD, int(swell::reference::kHugePageBytes)) == 1;
+// blocks of that size come from its arenas, which keep what is freed resident. swell's passes
+// make and free arrays of 2 to 32 MiB frame after frame, and `swell gate` at 2048² × 16 frames
+// peaked a tenth higher resident with glibc's threshold than with it fixed at 2 MiB
+// (docs/performance.md §7). A threshold set by mallopt stays where it is set.
+[[maybe_unused]] const bool mmap_threshold_fixed =
+    mallopt(M_MMAP_THRESHOLD, int(swell::reference::kHugePageBytes)) == 1;
 }  // namespace
 #endif
 

@@ -40,9 +40,9 @@ const impls::Plan& analysis_plan(int nx, int ny, impls::Kind kind, impls::Direct
 
 // An aligned scratch array of the calling thread, kept between calls, that each transform
 // writes its input into and transforms over itself. FFTW's plans want the alignment they were
-// planned with (else execute() goes through aligned copies), and
-// a fresh multi-megabyte array costs its page faults again on every call: at 512² they took as
-// long as the transform. Arrays above kKeepBytes are freed after use instead of kept.
+// planned with (else execute() goes through aligned copies), and a fresh multi-megabyte array
+// costs its page faults again on every call: at 512² they took as long as the transform.
+// Arrays above kKeepBytes are freed after use instead of kept.
 constexpr std::size_t kKeepBytes = std::size_t(64) << 20;
 
 // KeepAnalysisScratch guards alive on this thread: while any is, nothing is freed.

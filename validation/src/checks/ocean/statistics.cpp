@@ -6,6 +6,79 @@
 
 namespace swell::validation::ocean_analysis {
 
+namespace {
+
+// Gaussian amplitudes: u = I/μ are independent exponentials. Anderson–Darling against the
+// exponential law with its scale estimated (mean u), so that this part judges the shape of
+// the law only — an energy error is the energy check's to name.
+CheckResult check_gaussian_amplitudes(const Analysis& a, double alpha) {
+  std::vector<double> u;
+  u.reserve(a.waves().size());
+  double u_sum = 0;
+  for (const Wave& w : a.waves()) {
+    u.push_back(a.periodogram0(w.index) / w.mu);
+    u_sum += u.back();
+  }
+  const double u_mean = u_sum / double(u.size());
+  std::vector<double> cdf, log_survival;
+  cdf.reserve(u.size());
+  log_survival.reserve(u.size());
+  for (double x : u) {
+    cdf.push_back(-std::expm1(-x / u_mean));
+    log_survival.push_back(-x / u_mean);
+  }
+  const double a2 = stats::anderson_darling_statistic(cdf, log_survival);
+  const double p_ad = stats::anderson_darling_exponential_p(a2, int(cdf.size()));
+  // Which failure it is: u normalized by its neighbours' level instead of the case's μ — cells
+  // of 64 wave vectors, consecutive in |k| and then θ. Under complex Gaussian amplitudes one u
+  // over its cell's sum is Beta(1, n − 1) whatever the spectrum; exponential there and not
+  // against μ, the amplitudes are Gaussian and the spectrum (or spreading) is not the case's.
+  std::string amplitude_reason = " — the amplitudes are not complex Gaussian (|h̃|² not exponential: "
+                                 "uniform noise, or h̃0(k) and h̃0(−k) correlated?)";
+  if (p_ad < alpha && u.size() >= 256) {
+    std::vector<std::size_t> order(u.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    const auto& waves = a.waves();
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t x, std::size_t y) { return waves[x].k < waves[y].k; });
+    constexpr std::size_t kRing = 1024, kCell = 64;
+    for (std::size_t begin = 0; begin < order.size(); begin += kRing) {
+      const auto end = order.begin() + std::ptrdiff_t(std::min(order.size(), begin + kRing));
+      std::sort(order.begin() + std::ptrdiff_t(begin), end,
+                [&](std::size_t x, std::size_t y) { return waves[x].theta < waves[y].theta; });
+    }
+    std::vector<double> local_cdf, local_log_survival;
+    for (std::size_t begin = 0; begin + kCell <= order.size(); begin += kCell) {
+      double sum = 0;
+      for (std::size_t i = begin; i < begin + kCell; ++i) sum += u[order[i]];
+      if (!(sum > 0)) continue;
+      for (std::size_t i = begin; i < begin + kCell; ++i) {
+        const double y = u[order[i]] / sum;
+        const double log_survival_y = double(kCell - 1) * std::log1p(-y);
+        local_cdf.push_back(-std::expm1(log_survival_y));
+        local_log_survival.push_back(log_survival_y);
+      }
+    }
+    const double local_a2 = stats::anderson_darling_statistic(local_cdf, local_log_survival);
+    if (stats::anderson_darling_p(local_a2, int(local_cdf.size())) >= alpha) {
+      amplitude_reason = fmt::format(
+          " — but normalized by their neighbours' level (cells of {} wave vectors in |k| and θ) the "
+          "amplitudes are exponential (A² = {:.3g}): they are complex Gaussian, and the failure "
+          "follows from a spectrum or spreading other than the case's (spectrum.shape, "
+          "direction.distribution)",
+          kCell, local_a2);
+    }
+  }
+  return statistical_check(
+      "statistics.gaussian_amplitudes", a.subject(), a2, 1.0, p_ad, alpha,
+      fmt::format("p ≥ α = {:.1e} (Anderson–Darling, I/μ exponential, scale fitted, n = {})", alpha,
+                  cdf.size()),
+      fmt::format("A² = {:.3g} for the normalized periodogram{}", a2,
+                  p_ad < alpha ? amplitude_reason : ""));
+}
+
+}  // namespace
+
 Results check_statistics(const Analysis& a, OceanCheckReport& report) {
   Results out;
   const bool several_frames = a.times().size() >= 2;
@@ -57,75 +130,8 @@ Results check_statistics(const Analysis& a, OceanCheckReport& report) {
                             fmt::format("excess kurtosis of heights {:.3g} (z = {:.2f}){}", kurtosis,
                                         z_kurt, p_kurt < alpha ? " — heights are not Gaussian" : "")));
 
-  // Gaussian amplitudes: u = I/μ are independent exponentials. Anderson–Darling against the
-  // exponential law with its scale estimated (mean u), so that this part judges the shape of
-  // the law only — an energy error is the energy check's to name. Its arrays (three per wave
-  // vector) are freed before hs_steady's law is made.
-  {
-    std::vector<double> u;
-    u.reserve(a.waves().size());
-    double u_sum = 0;
-    for (const Wave& w : a.waves()) {
-      u.push_back(a.periodogram0(w.index) / w.mu);
-      u_sum += u.back();
-    }
-    const double u_mean = u_sum / double(u.size());
-    std::vector<double> cdf, log_survival;
-    cdf.reserve(u.size());
-    log_survival.reserve(u.size());
-    for (double x : u) {
-      cdf.push_back(-std::expm1(-x / u_mean));
-      log_survival.push_back(-x / u_mean);
-    }
-    const double a2 = stats::anderson_darling_statistic(cdf, log_survival);
-    const double p_ad = stats::anderson_darling_exponential_p(a2, int(cdf.size()));
-    // Which failure it is: u normalized by its neighbours' level instead of the case's μ — cells
-    // of 64 wave vectors, consecutive in |k| and then θ. Under complex Gaussian amplitudes one u
-    // over its cell's sum is Beta(1, n − 1) whatever the spectrum; exponential there and not
-    // against μ, the amplitudes are Gaussian and the spectrum (or spreading) is not the case's.
-    std::string amplitude_reason = " — the amplitudes are not complex Gaussian (|h̃|² not exponential: "
-                                   "uniform noise, or h̃0(k) and h̃0(−k) correlated?)";
-    if (p_ad < alpha && u.size() >= 256) {
-      std::vector<std::size_t> order(u.size());
-      std::iota(order.begin(), order.end(), std::size_t(0));
-      const auto& waves = a.waves();
-      std::sort(order.begin(), order.end(),
-                [&](std::size_t x, std::size_t y) { return waves[x].k < waves[y].k; });
-      constexpr std::size_t kRing = 1024, kCell = 64;
-      for (std::size_t begin = 0; begin < order.size(); begin += kRing) {
-        const auto end = order.begin() + std::ptrdiff_t(std::min(order.size(), begin + kRing));
-        std::sort(order.begin() + std::ptrdiff_t(begin), end,
-                  [&](std::size_t x, std::size_t y) { return waves[x].theta < waves[y].theta; });
-      }
-      std::vector<double> local_cdf, local_log_survival;
-      for (std::size_t begin = 0; begin + kCell <= order.size(); begin += kCell) {
-        double sum = 0;
-        for (std::size_t i = begin; i < begin + kCell; ++i) sum += u[order[i]];
-        if (!(sum > 0)) continue;
-        for (std::size_t i = begin; i < begin + kCell; ++i) {
-          const double y = u[order[i]] / sum;
-          const double log_survival_y = double(kCell - 1) * std::log1p(-y);
-          local_cdf.push_back(-std::expm1(log_survival_y));
-          local_log_survival.push_back(log_survival_y);
-        }
-      }
-      const double local_a2 = stats::anderson_darling_statistic(local_cdf, local_log_survival);
-      if (stats::anderson_darling_p(local_a2, int(local_cdf.size())) >= alpha) {
-        amplitude_reason = fmt::format(
-            " — but normalized by their neighbours' level (cells of {} wave vectors in |k| and θ) the "
-            "amplitudes are exponential (A² = {:.3g}): they are complex Gaussian, and the failure "
-            "follows from a spectrum or spreading other than the case's (spectrum.shape, "
-            "direction.distribution)",
-            kCell, local_a2);
-      }
-    }
-    out.push_back(statistical_check(
-        "statistics.gaussian_amplitudes", a.subject(), a2, 1.0, p_ad, alpha,
-        fmt::format("p ≥ α = {:.1e} (Anderson–Darling, I/μ exponential, scale fitted, n = {})", alpha,
-                    cdf.size()),
-        fmt::format("A² = {:.3g} for the normalized periodogram{}", a2,
-                    p_ad < alpha ? amplitude_reason : "")));
-  }
+  // Its arrays (three per wave vector) are freed before hs_steady's law is made.
+  out.push_back(check_gaussian_amplitudes(a, alpha));
 
   // Hs steady: m0(t) − m0(t0) = 4 Σ half plane Re(a b̄ (e^(−2iωt) − e^(−2iωt0))), mean 0,
   // variance 8 Σ τ+ τ− |e^(−2iωt) − e^(−2iωt0)|², plus rounding.

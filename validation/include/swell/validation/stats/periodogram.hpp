@@ -109,9 +109,9 @@ class InverseTransformArrays {
   std::unique_ptr<impls::HostBuffer> data_;
 };
 // Σk s(k) e^(ik·x) of the spectrum s `fill` writes (all sampling.size() entries, FFT order),
-// complex, in `arrays` (over the spectrum): valid until their next use. For s = A + iB with A and B each the
-// spectrum of a real field, the real part is A's field and the imaginary part B's, bit for bit
-// what fields_from_spectrum gives.
+// complex, in `arrays` (over the spectrum): valid until their next use. For s = A + iB with A
+// and B each the spectrum of a real field, the real part is A's field and the imaginary part
+// B's, bit for bit what fields_from_spectrum gives.
 std::span<const std::complex<double>> inverse_transform(
     const reference::Sampling& sampling, InverseTransformArrays& arrays,
     const std::function<void(std::span<std::complex<double>>)>& fill);
