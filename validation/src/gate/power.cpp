@@ -21,6 +21,7 @@
 #include <span>
 
 #include "common/parallel_tasks.hpp"
+#include "common/sorted_by_key.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/phase.hpp"
 #include "swell/validation/checks/ocean_check_table.hpp"
@@ -115,14 +116,16 @@ void make_setup(Setup& s, const CaseFile& case_file, double alpha, double unit_r
     candidates = s.own_waves;
   }
   // By |k|, equal |k| in the samples' order (a stable sort's order), through a sort of (|k|,
-  // position) keys.
-  std::vector<std::pair<double, std::size_t>> order;
+  // position) keys of the resolved candidates.
+  std::vector<std::size_t> kept;
+  kept.reserve(std::size_t(std::count_if(candidates.begin(), candidates.end(),
+                                         [&](const Wave& w) { return resolved(w.mu); })));
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (resolved(candidates[i].mu)) order.emplace_back(candidates[i].k, i);
+    if (resolved(candidates[i].mu)) kept.push_back(i);
   }
-  std::sort(order.begin(), order.end());
+  const auto order = detail::sorted_by_key(kept.size(), [&](std::size_t i) { return candidates[kept[i]].k; });
   s.waves.resize(order.size());
-  for (std::size_t i = 0; i < order.size(); ++i) s.waves[i] = &candidates[order[i].second];
+  for (std::size_t i = 0; i < order.size(); ++i) s.waves[i] = &candidates[kept[order[i].second]];
 }
 
 // visit(wave, rank) for the resolved waves in |k| order. They lie in the half plane's order,

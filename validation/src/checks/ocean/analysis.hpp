@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "common/parallel_tasks.hpp"
+#include "common/sorted_by_key.hpp"
 #include "swell/impls/transform.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/sampling_validity.hpp"
@@ -140,12 +141,10 @@ OmegaGroups group_by_omega(const Waves& waves) {
   OmegaGroups out;
   // Sorted as (ω, position) pairs: a stable sort's order, without reaching into the waves for
   // every comparison.
-  std::vector<std::pair<double, std::size_t>> order(waves.size());
-  for (std::size_t i = 0; i < waves.size(); ++i) order[i] = {waves[i].omega, i};
-  std::sort(order.begin(), order.end());
+  const auto order = detail::sorted_by_key(waves.size(), [&](std::size_t i) { return waves[i].omega; });
   out.group.resize(waves.size());
   for (const auto& [omega, i] : order) {
-    if (out.omegas.empty() || !(out.omegas.back() == waves[i].omega)) out.omegas.push_back(waves[i].omega);
+    if (out.omegas.empty() || !(out.omegas.back() == omega)) out.omegas.push_back(omega);
     out.group[i] = out.omegas.size() - 1;
   }
   return out;
