@@ -12,6 +12,7 @@
 #include <limits>
 #include <numbers>
 
+#include "common/sorted_by_key.hpp"
 #include "cumulant_terms.hpp"
 #include "swell/reference/errors.hpp"
 
@@ -279,22 +280,31 @@ double WeightedExponentialSum::quantile(double p) const {
 
 // ------------------------------------------------------------ Anderson–Darling
 
-double anderson_darling_statistic(std::vector<double> cdf_values,
-                                  std::vector<double> log_survival_values) {
+double anderson_darling_statistic(const std::vector<double>& cdf_values,
+                                  const std::vector<double>& log_survival_values) {
   const std::size_t n = cdf_values.size();
   if (n == 0 || log_survival_values.size() != n) {
     throw NumericalError("anderson_darling_statistic: empty or mismatched sample");
   }
   // The sample in order: by F, and where F rounds to the same value (near 1, F = 1 − e^(−x)
   // holds far fewer doubles than x), by the log of survival, which still tells the values
-  // apart. Sorted as (F, −log S) pairs, not through positions (a cache miss per comparison).
-  std::vector<std::pair<double, double>> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = {cdf_values[i], -log_survival_values[i]};
-  std::sort(order.begin(), order.end());
+  // apart — the order of (F, −log S) pairs. Sorted by F with its positions (F is uniform on
+  // [0, 1) under the null: the buckets of sorted_by_key fill evenly), then each run of equal F
+  // by −log S.
+  auto order = validation::detail::sorted_by_key(n, [&](std::size_t i) { return cdf_values[i]; });
+  for (std::size_t begin = 0, end; begin < n; begin = end) {
+    for (end = begin + 1; end < n && order[end].first == order[begin].first;) ++end;
+    if (end - begin > 1) {
+      std::sort(order.begin() + std::ptrdiff_t(begin), order.begin() + std::ptrdiff_t(end),
+                [&](const auto& x, const auto& y) {
+                  return -log_survival_values[x.second] < -log_survival_values[y.second];
+                });
+    }
+  }
   double sum = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double log_f = std::log(order[i].first);
-    const double log_s = -order[n - 1 - i].second;
+    const double log_s = log_survival_values[order[n - 1 - i].second];
     sum += double(2 * i + 1) * (log_f + log_s);
   }
   return -double(n) - sum / double(n);

@@ -51,9 +51,23 @@ Analysis::Analysis(const OceanCase& ocean_case, const FrameSource& frames, const
     throw InternalError("Analysis: travelling power of the wrong size");
   }
   shared_->tau = std::move(travelling);
-  // Two independent parts side by side (the second is an FFT): run_tasks rethrows the first
-  // part's error before the second's, so the error reported is the one a sequential run meets
-  // first.
+  // The half plane's wave vectors in FFT order, made in chunks of the samples that the threads
+  // take as they come free (hypot, ω and atan2 per wave were a second of one thread at 4096²):
+  // each chunk's waves are counted first, then written at their place in one array of the
+  // exact size. In FFT order the half plane (m > 0, and m = 0 with n > 0) is the first half of
+  // a grid's rows, so the chunks are many, not one per thread.
+  auto in_plane = [&](std::size_t e) {
+    if (!sampling_.carries_energy(e)) return false;
+    const auto [n, m] = sampling_.wave_index(e);
+    return in_half_plane(n, m);
+  };
+  constexpr std::size_t kChunks = 64;
+  const std::size_t chunks = std::min(kChunks, count_);
+  const auto chunk_begin = [&](std::size_t c) { return c * count_ / chunks; };
+  std::vector<std::size_t> first_wave(chunks + 1, 0);
+  // Two independent parts side by side: μ, the sampling rule and the half plane's array (its
+  // pages zeroed: 0.7 GB at 4096²), and frame 0's FFT. run_tasks rethrows the first part's
+  // error before the second's, so the error reported is the one a sequential run meets first.
   detail::run_tasks(2, threads_, [&](std::size_t part) {
     if (part == 0) {
       shared_->mu = expected_periodogram(shared_->tau, sampling_);  // τ(k) + τ(−k): Ψ evaluated once
@@ -63,6 +77,12 @@ Analysis::Analysis(const OceanCase& ocean_case, const FrameSource& frames, const
       reference::require_valid_sampling(
           c_, precision_.unit_roundoff > 2 * kFp64Roundoff ? reference::kFloat32 : reference::kFloat64,
           0, "", &shared_->tau);
+      for (std::size_t c = 0; c < chunks; ++c) {
+        std::size_t waves = 0;
+        for (std::size_t e = chunk_begin(c); e < chunk_begin(c + 1); ++e) waves += in_plane(e);
+        first_wave[c + 1] = first_wave[c] + waves;
+      }
+      shared_->half_plane.resize(first_wave[chunks]);
     } else {
       field_spectrum(height0, sampling_, shared_->spectrum0, &spectral_energy0_);
       mean_square0_ = mean_square(height0);
@@ -84,26 +104,9 @@ Analysis::Analysis(const OceanCase& ocean_case, const FrameSource& frames, const
   floor_ = std::max(floor_, 1e4 * storage_ * storage_ * expected_total / double(count_));
 
   const double dkx = sampling_.dkx(), dky = sampling_.dky();
-  // The half plane's wave vectors in FFT order, made in `threads_` runs of the samples side by
-  // side (hypot, ω and atan2 per wave were a second of one thread at 4096²): each run counts
-  // its waves, then writes them at its place in one array of the exact size.
-  auto in_plane = [&](std::size_t e) {
-    if (!sampling_.carries_energy(e)) return false;
-    const auto [n, m] = sampling_.wave_index(e);
-    return in_half_plane(n, m);
-  };
-  const std::size_t runs = std::size_t(threads_);
-  std::vector<std::size_t> first_wave(runs + 1, 0);
-  detail::run_tasks(runs, threads_, [&](std::size_t r) {
-    std::size_t waves = 0;
-    for (std::size_t e = r * count_ / runs; e < (r + 1) * count_ / runs; ++e) waves += in_plane(e);
-    first_wave[r + 1] = waves;
-  });
-  for (std::size_t r = 0; r < runs; ++r) first_wave[r + 1] += first_wave[r];
-  shared_->half_plane.resize(first_wave[runs]);
-  detail::run_tasks(runs, threads_, [&](std::size_t r) {
-    std::size_t next = first_wave[r];
-    for (std::size_t e = r * count_ / runs; e < (r + 1) * count_ / runs; ++e) {
+  detail::run_tasks(chunks, threads_, [&](std::size_t c) {
+    std::size_t next = first_wave[c];
+    for (std::size_t e = chunk_begin(c); e < chunk_begin(c + 1); ++e) {
       if (!in_plane(e)) continue;
       const auto [n, m] = sampling_.wave_index(e);
       Wave& w = shared_->half_plane[next++];
@@ -406,6 +409,13 @@ OmegaGroups subset_groups(const OmegaGroups& all, const std::vector<std::size_t>
 
 double resolution_floor(double u, double mean_square_height, std::size_t count) {
   return 1e6 * u * u * mean_square_height / double(count);
+}
+
+std::vector<NormalizedOrdinate> Analysis::frame0_ordinates() const {
+  std::vector<NormalizedOrdinate> ordinates;
+  ordinates.reserve(waves().size());
+  for (const Wave& w : waves()) ordinates.push_back({w.k, periodogram0(w.index) / w.mu});
+  return ordinates;
 }
 
 RingShape ring_shape(std::vector<NormalizedOrdinate> ordinates) {

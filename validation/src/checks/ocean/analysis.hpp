@@ -339,6 +339,15 @@ class Analysis {
     std::call_once(table_once_, [this] { misdeclared_table_ = diagnose_table_declarations(*this); });
     return misdeclared_table_;
   }
+  // The rings of |k| of frame 0's normalized periodogram u = I/μ over the resolved waves
+  // (ring_shape), made once on first use: spectrum.shape judges them and measure_level reads
+  // the level from them (a sort of the resolved waves by |k|: half a second at 4096²).
+  const RingShape& frame0_rings() const {
+    std::call_once(rings_once_, [this] { rings0_ = ring_shape(frame0_ordinates()); });
+    return rings0_;
+  }
+  // u = I/μ of frame 0 at each resolved wave, with its |k|, in the resolved waves' order.
+  std::vector<NormalizedOrdinate> frame0_ordinates() const;
   // The measured level of frame 0's spectrum (MeasuredLevel), made once on first use: the
   // scale-dependent checks normalize by it, energy and shape name it.
   const MeasuredLevel& measured_level() const {
@@ -377,8 +386,9 @@ class Analysis {
   mutable std::vector<WaveFit> fits_;
   mutable std::string misdeclared_table_;
   mutable MeasuredLevel level_;
+  mutable RingShape rings0_;
   mutable std::chrono::steady_clock::time_point last_progress_ = std::chrono::steady_clock::now();
-  mutable std::once_flag pass_once_, dispersion_once_, table_once_, level_once_;
+  mutable std::once_flag pass_once_, dispersion_once_, table_once_, level_once_, rings_once_;
 };
 
 // A failed check's explanation: the misdeclared table's reading where one explains the

@@ -96,10 +96,7 @@ std::vector<ConventionProduct> convention_products(double dk) {
 }  // namespace
 
 MeasuredLevel measure_level(const Analysis& a) {
-  std::vector<NormalizedOrdinate> ordinates;
-  ordinates.reserve(a.waves().size());
-  for (const Wave& w : a.waves()) ordinates.push_back({w.k, a.periodogram0(w.index) / w.mu});
-  const RingShape shape = ring_shape(std::move(ordinates));
+  const RingShape& shape = a.frame0_rings();
   MeasuredLevel out;
   out.rings = shape.rings;
   if (shape.ratios.empty()) return out;

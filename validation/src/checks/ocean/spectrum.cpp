@@ -10,11 +10,8 @@ namespace swell::validation::ocean_analysis {
 // stay within the sampling law of what μ puts there plus rounding.
 Results check_spectrum(const Analysis& a, OceanCheckReport&) {
   const double alpha = a.options().alpha / 2;
-  std::vector<NormalizedOrdinate> ordinates;
-  ordinates.reserve(a.waves().size());
-  for (const Wave& w : a.waves()) ordinates.push_back({w.k, a.periodogram0(w.index) / w.mu});
-  const int n = int(ordinates.size());
-  const RingShape shape = ring_shape(ordinates);
+  const int n = int(a.waves().size());
+  const RingShape& shape = a.frame0_rings();
   const int rings = shape.rings;
   const double p = shape.p;
   // In the engine's terms: a band of |k| carrying twice its energy (two cascades overlapping).
@@ -48,6 +45,7 @@ Results check_spectrum(const Analysis& a, OceanCheckReport&) {
   std::string scale_explanation;
   const MeasuredLevel& level = a.measured_level();
   if (p < alpha && level.uniform && level.off()) {
+    std::vector<NormalizedOrdinate> ordinates = a.frame0_ordinates();
     for (auto& o : ordinates) o.u /= level.level;
     const RingShape normalized = ring_shape(std::move(ordinates));
     const std::string cause = name_scale_cause(a, level.level, level.low, level.high, true);

@@ -60,8 +60,8 @@ double exponential_difference_sum_cdf(const std::vector<double>& weights, double
 // Anderson–Darling statistic A² of a sample against a fully specified continuous distribution,
 // given the sample's CDF values u_i = F(x_i) (any order) and their logs of survival
 // log(1 − u_i) (passed separately to keep precision in the upper tail).
-double anderson_darling_statistic(std::vector<double> cdf_values,
-                                  std::vector<double> log_survival_values);
+double anderson_darling_statistic(const std::vector<double>& cdf_values,
+                                  const std::vector<double>& log_survival_values);
 // P(A² ≥ a) for a sample of n under the null, by Marsaglia & Marsaglia (2004), "Evaluating the
 // Anderson–Darling distribution", J. Stat. Softw. 9(2): the asymptotic CDF plus their
 // finite-n correction (absolute error < 2e-6 in the CDF).
