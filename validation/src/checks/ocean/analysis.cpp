@@ -332,12 +332,19 @@ void Analysis::run_dispersion_pass() const {
   const std::size_t chunks = std::min<std::size_t>(fits.size(), std::size_t(2 * threads_));
   detail::TaskPool pool(threads_);
   // Frame f's residuals and strongest series from y(w), its transform at resolved wave w
-  // exactly as the first pass saw it (frame 0's ĥ, or X(k) · (1/N)).
-  auto fold = [&](std::size_t f, const auto& y) {
-    for (std::size_t g = 0; g < phases.size(); ++g) {
-      phases[g] = reference::unit_phasor(-reference::reduced_phase(p.groups.omegas[g], times_[f]));
-    }
-    pool.run(chunks, [&](std::size_t chunk) {
+  // exactly as the first pass saw it (frame 0's ĥ, or X(k) · (1/N)): the phases, then the
+  // residuals, each in chunks on the pool's threads; `beside`, when given, runs as one more task
+  // beside the residuals' chunks (the next frame's values read from the spill).
+  const std::size_t phase_chunks = std::min<std::size_t>(phases.size(), std::size_t(2 * threads_));
+  auto fold = [&](std::size_t f, const auto& y, const std::function<void()>& beside) {
+    pool.run(phase_chunks, [&](std::size_t chunk) {
+      const std::size_t begin = chunk * phases.size() / phase_chunks, end = (chunk + 1) * phases.size() / phase_chunks;
+      for (std::size_t g = begin; g < end; ++g) {
+        phases[g] = reference::unit_phasor(-reference::reduced_phase(p.groups.omegas[g], times_[f]));
+      }
+    });
+    pool.run(chunks + (beside ? 1 : 0), [&](std::size_t chunk) {
+      if (chunk == chunks) return beside();
       const std::size_t begin = chunk * fits_.size() / chunks, end = (chunk + 1) * fits_.size() / chunks;
       for (std::size_t i = begin; i < end; ++i) {
         WaveFit& fit = fits_[i];
@@ -349,11 +356,18 @@ void Analysis::run_dispersion_pass() const {
     for (std::size_t j = 0; j < d.strongest.size(); ++j) d.series[j][f] = y(d.strongest[j]->position);
   };
   if (p.spill && p.spill->ok()) {
-    std::vector<Complex> y(shared_->resolved.size());
-    bool whole = true;
+    // Two arrays in turn: frame f + 1's values are read while frame f's are folded.
+    std::array<std::vector<Complex>, 2> y;
+    y[0].resize(shared_->resolved.size());
+    bool whole = p.spill->read(0, y[0]);
+    if (frames > 1) y[1].resize(shared_->resolved.size());
     for (std::size_t f = 0; f < frames && whole; ++f) {
-      whole = p.spill->read(f, y);
-      if (whole) fold(f, [&](std::size_t w) { return y[w]; });
+      const std::vector<Complex>& values = y[f % 2];
+      bool next_read = true;
+      std::function<void()> read_next;
+      if (f + 1 < frames) read_next = [&] { next_read = p.spill->read(f + 1, y[(f + 1) % 2]); };
+      fold(f, [&](std::size_t w) { return values[w]; }, read_next);
+      whole = next_read;
     }
     pass_.spill.reset();
     if (whole) return;
@@ -362,10 +376,10 @@ void Analysis::run_dispersion_pass() const {
   frames_.stream([](int, Field field) { return field == Field::height; },
                  [&](std::size_t f, const reference::FieldFrame& frame) {
     if (f == 0) {
-      fold(f, [&](std::size_t w) { return shared_->spectrum0[shared_->resolved[w].index]; });
+      fold(f, [&](std::size_t w) { return shared_->spectrum0[shared_->resolved[w].index]; }, {});
     } else {
       const auto transform = analysis_transform(height_of(frame, f), sampling_);
-      fold(f, [&](std::size_t w) { return transform[shared_->resolved[w].index] * scale; });
+      fold(f, [&](std::size_t w) { return transform[shared_->resolved[w].index] * scale; }, {});
     }
     progress(f + 1 == frames, [&] {
       return fmt::format("frame {} of {} fitted again (dispersion.residual)", f + 1, frames);
