@@ -12,11 +12,16 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
+// e^x, with the arguments below −746 — where e^x is below half the least subnormal and rounds
+// to +0 — answered without calling exp, whose underflow path (errno, a scaled retry) costs
+// several times a normal call; far from the peak both spectra's exponentials underflow.
+double exp_or_underflow(double x) { return x < -746 ? 0.0 : std::exp(x); }
+
 // a ω⁻⁵ exp(−b ω⁻⁴) without overflow: for tiny ω, ω⁻⁵ alone overflows while the product is 0.
 double pierson_moskowitz_shape(double a, double b, double omega) {
   if (omega <= 0) return 0;
   const double x = b / (omega * omega * omega * omega);
-  if (x > 700) return a * std::exp(-x - 5.0 * std::log(omega));
+  if (x > 700) return a * exp_or_underflow(-x - 5.0 * std::log(omega));
   const double omega5 = omega * omega * omega * omega * omega;
   return a * std::exp(-x) / omega5;
 }
@@ -79,7 +84,10 @@ double PiersonMoskowitz::peak_omega() const { return std::pow(0.8 * b_, 0.25); }
 Jonswap::Jonswap(double alpha, double omega_p, Shape shape, double gravity,
                  std::vector<Parameter> parameters)
     : alpha_(alpha), omega_p_(omega_p), shape_(shape), gravity_(gravity),
-      parameters_(std::move(parameters)) {}
+      parameters_(std::move(parameters)),
+      alpha_g2_(alpha_ * gravity_ * gravity_),
+      b_(1.25 * std::pow(omega_p_, 4)),
+      log_gamma_(std::log(shape_.gamma)) {}
 
 std::shared_ptr<const Jonswap> Jonswap::from_alpha(double alpha, double omega_p, Shape shape,
                                                    double gravity) {
@@ -141,12 +149,10 @@ std::shared_ptr<const Jonswap> Jonswap::assemble(double alpha, double omega_p, S
 
 double Jonswap::operator()(double omega) const {
   if (omega <= 0) return 0;
-  const double b = 1.25 * std::pow(omega_p_, 4);
   const double sigma = omega <= omega_p_ ? shape_.sigma_a : shape_.sigma_b;
   const double d = (omega - omega_p_) / (sigma * omega_p_);
-  const double r = std::exp(-0.5 * d * d);
-  return pierson_moskowitz_shape(alpha_ * gravity_ * gravity_, b, omega) *
-         std::exp(r * std::log(shape_.gamma));
+  const double r = exp_or_underflow(-0.5 * d * d);
+  return pierson_moskowitz_shape(alpha_g2_, b_, omega) * std::exp(r * log_gamma_);
 }
 
 std::vector<double> Jonswap::breakpoints() const {

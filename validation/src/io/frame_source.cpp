@@ -64,8 +64,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-FileFrameSource::FileFrameSource(const CaseFile& case_file, const std::string& pattern_override)
-    : reader_(case_file, pattern_override), sampling_(case_file.ocean.sampling()) {
+FileFrameSource::FileFrameSource(const CaseFile& case_file, const std::string& pattern_override, int threads)
+    : reader_(case_file, pattern_override, threads), sampling_(case_file.ocean.sampling()) {
   const auto start = std::chrono::steady_clock::now();
   if (reader_.frames() < 1) throw InvalidInput("no frames to check");
   auto first = std::make_shared<FieldFrame>();

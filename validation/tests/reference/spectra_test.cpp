@@ -214,6 +214,27 @@ TEST(Jonswap, FromAlphaMatchesFormula) {
   }
 }
 
+// The spectrum's constants (α g², 1.25 ωp⁴, log γ) are made once and exponentials that
+// underflow are not computed: the values are bit for bit the definition's evaluation, from far
+// below the peak (where e^(−1.25 (ωp/ω)⁴) underflows) to far above it (where the peak's
+// e^(−d²/2) does).
+TEST(Jonswap, ValuesAreTheDefinitionEvaluatedBitForBit) {
+  const double alpha = 0.0123, wp = 0.9;
+  for (sr::Jonswap::Shape shape : {sr::Jonswap::Shape{}, sr::Jonswap::Shape{6.0, 0.05, 0.12}}) {
+    const auto j = sr::Jonswap::from_alpha(alpha, wp, shape, 9.81);
+    for (double w = 0.02; w < 60; w *= 1.0137) {
+      const double a = alpha * 9.81 * 9.81, b = 1.25 * std::pow(wp, 4);
+      const double x = b / (w * w * w * w);
+      const double pm = x > 700 ? a * std::exp(-x - 5.0 * std::log(w)) : a * std::exp(-x) / (w * w * w * w * w);
+      const double sigma = w <= wp ? shape.sigma_a : shape.sigma_b;
+      const double d = (w - wp) / (sigma * wp);
+      const double want = pm * std::exp(std::exp(-0.5 * d * d) * std::log(shape.gamma));
+      const double got = (*j)(w);
+      EXPECT_TRUE(got == want) << "w = " << w << ": " << got << " against " << want;
+    }
+  }
+}
+
 TEST(Jonswap, GammaOneFromAlphaIsPiersonMoskowitz) {
   // With γ = 1 and α = (5/16) Hs² ωp⁴ / g², JONSWAP is the Bretschneider spectrum pointwise.
   const double hs = 2.5, tp = 9.0, wp = 2 * pi / tp;

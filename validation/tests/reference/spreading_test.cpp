@@ -296,6 +296,23 @@ TEST(Spreading, PeriodicInTheta) {
   }
 }
 
+// wrap_angle answers |θ| < π without std::remainder: bit for bit what remainder gives there,
+// and at ±π, just inside and outside them, and far out.
+TEST(WrapAngle, IsRemaindersAngleBitForBit) {
+  auto by_remainder = [](double theta) {
+    double r = std::remainder(theta, 2.0 * pi);
+    if (r <= -pi) r += 2.0 * pi;
+    return r;
+  };
+  std::vector<double> angles = {0.0, -0.0, pi, -pi, std::nextafter(pi, 0.0), std::nextafter(-pi, 0.0),
+                                std::nextafter(pi, 4.0), std::nextafter(-pi, -4.0), 2 * pi, -2 * pi, 1e6, -1e300};
+  for (double th = -10.0; th <= 10.0; th += 0.001237) angles.push_back(th);
+  for (double th : angles) {
+    const double got = sr::wrap_angle(th), want = by_remainder(th);
+    EXPECT_TRUE(got == want && std::signbit(got) == std::signbit(want)) << th << ": " << got << " against " << want;
+  }
+}
+
 TEST(WrapAngle, MapsIntoMinusPiExclusivePiInclusive) {
   EXPECT_EQ(sr::wrap_angle(0.0), 0.0);
   EXPECT_EQ(sr::wrap_angle(0.5), 0.5);

@@ -108,6 +108,9 @@ class Jonswap final : public FrequencySpectrum {
   Shape shape_;
   double gravity_;
   std::vector<Parameter> parameters_;
+  // operator()'s constants, made once (a pow and a log per evaluation were a tenth of the
+  // gate's τ(k) at 4096²): α g², 1.25 ωp⁴ and log γ.
+  double alpha_g2_ = 0, b_ = 0, log_gamma_ = 0;
 };
 
 enum class TmaFactor {

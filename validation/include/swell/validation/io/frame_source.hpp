@@ -62,7 +62,9 @@ class MemoryFrameSource final : public FrameSource {
 // stands for all until a stream has seen every frame) and kept until the first stream passes it.
 class FileFrameSource final : public FrameSource {
  public:
-  FileFrameSource(const CaseFile& case_file, const std::string& pattern_override = "");
+  // `threads` decode each file (its compressed blocks side by side); the frames themselves are
+  // read one after another.
+  FileFrameSource(const CaseFile& case_file, const std::string& pattern_override = "", int threads = 1);
   reference::Sampling sampling() const override { return sampling_; }
   std::size_t size() const override { return std::size_t(reader_.frames()); }
   double time(std::size_t frame) const override { return reader_.ocean().time(int(frame)); }
