@@ -24,14 +24,20 @@ std::shared_ptr<const SpreadSpectrum> SpreadSpectrum::create(FrequencySpectrumPt
       std::move(spectrum), std::move(spreading), dispersion, mean_direction));
 }
 
-double SpreadSpectrum::psi(double kx, double ky) const {
-  const double k = std::hypot(kx, ky);
-  if (k == 0) return 0;
-  const double omega = dispersion_.omega(k);
-  const double theta = std::atan2(ky, kx) - mean_direction_;
-  // Ψ(k) k dk dθ = S(ω) D dω dθ  ⇒  Ψ = S D (dω/dk) / k.
-  return (*spectrum_)(omega) * (*spreading_)(omega, theta) * dispersion_.group_velocity(k) / k;
+SpreadSpectrum::Factors SpreadSpectrum::factors(double kx, double ky) const {
+  Factors f;
+  f.k = std::hypot(kx, ky);
+  if (f.k == 0) return f;
+  f.omega = dispersion_.omega(f.k);
+  f.theta = std::atan2(ky, kx) - mean_direction_;
+  f.spectrum = (*spectrum_)(f.omega);
+  f.spreading = (*spreading_)(f.omega, f.theta);
+  f.group_velocity = dispersion_.group_velocity(f.k);
+  return f;
 }
+
+// Ψ(k) k dk dθ = S(ω) D dω dθ  ⇒  Ψ = S D (dω/dk) / k.
+double SpreadSpectrum::psi(double kx, double ky) const { return psi_of(factors(kx, ky)); }
 
 // ---------------------------------------------------------------- Phillips
 

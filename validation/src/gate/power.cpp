@@ -22,6 +22,7 @@
 
 #include "common/parallel_tasks.hpp"
 #include "common/sorted_by_key.hpp"
+#include "gate/trial_seas.hpp"
 #include "swell/reference/errors.hpp"
 #include "swell/reference/phase.hpp"
 #include "swell/validation/checks/ocean_check_table.hpp"
@@ -37,6 +38,7 @@ namespace swell::validation {
 namespace {
 
 using Complex = std::complex<double>;
+using detail::TrialSeas;
 constexpr double kPower = 0.9;
 constexpr double kFp64 = 0x1p-53;
 constexpr double kDegree = 180.0 / std::numbers::pi;
@@ -304,12 +306,14 @@ class DirectionPower {
       for (int j = 0; j < 4; ++j) mean[j] += g[j];
     }
     for (double& v : mean) v /= double(std::max<std::size_t>(entries_.size(), 1));
+    std::vector<TrialSeas::WaveVector> wave_vectors;
     for (const Entry& e : entries_) {
       auto g = harmonics(e.theta);
       for (int j = 0; j < 4; ++j) g[j] -= mean[j];
       centred_.push_back(g);
-      psi0_.push_back(s.psi->psi(e.kx, e.ky));
+      wave_vectors.push_back({e.kx, e.ky});
     }
+    seas_.emplace(s.psi, std::move(wave_vectors));
     critical_ = boost::math::quantile(boost::math::complement(boost::math::chi_squared(4), alpha / 2));
     std::mt19937_64 random(20261207);
     std::normal_distribution<double> normal(0, 1);
@@ -319,13 +323,16 @@ class DirectionPower {
     }
   }
   bool usable() const { return centred_.size() >= 8; }
-  // The power against an engine whose Ψ' is `psi` (a rotated or otherwise spread sea).
-  double power(const std::function<double(double, double)>& psi) const {
+  // The wave vectors the score reads, and the case's Ψ there.
+  const TrialSeas& seas() const { return *seas_; }
+  // The power against an engine whose Ψ' at seas()' wave vectors is `psi` (a rotated or
+  // otherwise spread sea).
+  double power(const std::vector<double>& psi) const {
+    const std::vector<double>& psi0 = seas_->own();
     std::array<double, 4> m{};
     std::array<std::array<double, 4>, 4> c0{}, c1{};
     for (std::size_t j = 0; j < centred_.size(); ++j) {
-      const Entry& e = entries_[j];
-      const double r = psi0_[j] > 0 ? psi(e.kx, e.ky) / psi0_[j] : 1.0;
+      const double r = psi0[j] > 0 ? psi[j] / psi0[j] : 1.0;
       const auto& g = centred_[j];
       for (int a = 0; a < 4; ++a) {
         m[a] += (r - 1) * g[a];
@@ -377,7 +384,7 @@ class DirectionPower {
   std::vector<Entry> entries_;
   std::size_t stride_ = 1;
   std::vector<std::array<double, 4>> centred_;
-  std::vector<double> psi0_;
+  std::optional<TrialSeas> seas_;
   double critical_ = 0;
   std::vector<std::array<double, 4>> normals_;
 };
@@ -445,17 +452,23 @@ PowerLine gamma_power_line(const Setup& s, const reference::OceanCase& c, const 
     gamma.below = gamma.above = std::numeric_limits<double>::quiet_NaN();
   } else {
     const double gamma0 = found != c.spectrum.numbers.end() ? found->second : 3.3;
-    // The case's own Ψ(k) + Ψ(−k) at the waves the rings read, once for every γ'.
-    std::vector<double> own;
-    for (const Wave* w : shape.sampled()) own.push_back(s.psi->psi(w->kx, w->ky) + s.psi->psi(-w->kx, -w->ky));
+    // Ψ(k) and Ψ(−k) at the waves the rings read, in turn; the case's sums once for every γ'.
+    std::vector<TrialSeas::WaveVector> wave_vectors;
+    for (const Wave* w : shape.sampled()) {
+      wave_vectors.push_back({w->kx, w->ky});
+      wave_vectors.push_back({-w->kx, -w->ky});
+    }
+    const TrialSeas seas(s.psi, std::move(wave_vectors));
+    std::vector<double> own(shape.sampled().size());
+    for (std::size_t j = 0; j < own.size(); ++j) own[j] = seas.own()[2 * j] + seas.own()[2 * j + 1];
+    std::vector<double> trial;
     auto power_at = [&](double g) {
       reference::OceanCase other = c;
       other.spectrum.numbers["gamma"] = std::max(1.0, g);  // γ ≥ 1; γ0/(γ0) may round below it
-      const auto psi = other.directional_spectrum();
+      seas.evaluate(*other.directional_spectrum(), TrialSeas::Varied::spectrum, 0, trial);
       std::vector<double> ratios(own.size());
       for (std::size_t j = 0; j < own.size(); ++j) {
-        const Wave& w = *shape.sampled()[j];
-        ratios[j] = own[j] > 0 ? (psi->psi(w.kx, w.ky) + psi->psi(-w.kx, -w.ky)) / own[j] : 1.0;
+        ratios[j] = own[j] > 0 ? (trial[2 * j] + trial[2 * j + 1]) / own[j] : 1.0;
       }
       return shape.power(ratios);
     };
@@ -571,6 +584,7 @@ PowerLine omega_power_line(const Setup& s, const reference::OceanCase& c, double
 void direction_power_lines(const Setup& s, const reference::OceanCase& c, PowerLine& offset_line,
                            PowerLine& spreading_line) {
   const DirectionPower direction(s, s.alpha_per_check);
+  std::vector<double> trial;
   {
     PowerLine line;
     line.error = "mean direction offset";
@@ -579,10 +593,8 @@ void direction_power_lines(const Setup& s, const reference::OceanCase& c, PowerL
       line.above = line.below = std::numeric_limits<double>::quiet_NaN();
     } else {
       const double offset = smallest_detected(0.01, 180, [&](double degrees) {
-        const double r = degrees / kDegree, cr = std::cos(r), sr = std::sin(r);
-        return direction.power([&](double kx, double ky) {
-                 return s.psi->psi(cr * kx + sr * ky, -sr * kx + cr * ky);  // Ψ(R(−Δθ) k)
-               }) >= kPower;
+        direction.seas().evaluate(*s.psi, TrialSeas::Varied::direction, degrees / kDegree, trial);  // Ψ(R(−Δθ) k)
+        return direction.power(trial) >= kPower;
       });
       line.above = offset, line.below = -offset;
       line.smallest = std::isnan(offset) ? "none up to 180°" : fmt::format("{:.3g}°", offset);
@@ -606,8 +618,8 @@ void direction_power_lines(const Setup& s, const reference::OceanCase& c, PowerL
       auto detects = [&](double value) {
         reference::OceanCase other = c;
         other.spreading.numbers["s"] = std::max(value, 1e-6 * s0);
-        const auto psi = other.directional_spectrum();
-        return direction.power([&](double kx, double ky) { return psi->psi(kx, ky); }) >= kPower;
+        direction.seas().evaluate(*other.directional_spectrum(), TrialSeas::Varied::spreading, 0, trial);
+        return direction.power(trial) >= kPower;
       };
       const double up = smallest_detected(1.001, 100, [&](double q) { return detects(s0 * q); });
       const double down = smallest_detected(1.001, 100, [&](double q) { return detects(s0 / q); });

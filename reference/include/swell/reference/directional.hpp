@@ -36,6 +36,17 @@ class SpreadSpectrum final : public DirectionalSpectrum {
   double mean_direction() const override { return mean_direction_; }
   const Spreading& spreading() const { return *spreading_; }
 
+  // Ψ's factors at one wave vector: |k|, ω(|k|), θ = θk − θw, S(ω), D(ω, θ), c_g(|k|) (all 0 at
+  // k = 0). psi(kx, ky) is psi_of(factors(kx, ky)), so a sea that differs from this one in S or
+  // D alone is evaluated from these with the bits of its own psi.
+  struct Factors {
+    double k = 0, omega = 0, theta = 0, spectrum = 0, spreading = 0, group_velocity = 0;
+  };
+  Factors factors(double kx, double ky) const;
+  static double psi_of(const Factors& f) {
+    return f.k == 0 ? 0.0 : f.spectrum * f.spreading * f.group_velocity / f.k;
+  }
+
  private:
   SpreadSpectrum(FrequencySpectrumPtr spectrum, SpreadingPtr spreading, Dispersion dispersion,
                  double mean_direction);
