@@ -6,8 +6,8 @@
 // and each bucket is then sorted on its own, a few pairs in cache. At 4096² a std::sort of the
 // 8.4 × 10⁶ pairs of the analysis' half plane took over a second (docs/performance.md §6).
 // The half plane's ω (checks/ocean/analysis.hpp), the power table's |k| (gate/power.cpp) and
-// Anderson–Darling's sample (stats/statistics.cpp) are sorted here. Keys that are not all finite, or too few to gain from buckets, go through
-// std::sort itself.
+// Anderson–Darling's sample (stats/statistics.cpp) are sorted here. Keys that are not all
+// finite, or too few to gain from buckets, go through std::sort itself.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>

@@ -292,22 +292,23 @@ class DirectionPower {
       count += std::size_t(w.tau_plus >= s.floor) + std::size_t(w.tau_minus >= s.floor);
     });
     stride_ = std::max<std::size_t>(1, count / kMostEntries);
+    std::vector<Entry> entries;
     std::size_t position = 0;
     auto keep = [&](const Entry& entry) {
-      if (position++ % stride_ == 0) entries_.push_back(entry);
+      if (position++ % stride_ == 0) entries.push_back(entry);
     };
     for_each_by_k(s, [&](const Wave& w, std::size_t) {
       if (w.tau_plus >= s.floor) keep({w.kx, w.ky, w.theta});
       if (w.tau_minus >= s.floor) keep({-w.kx, -w.ky, w.theta + std::numbers::pi});
     });
     std::array<double, 4> mean{};
-    for (const Entry& e : entries_) {
+    for (const Entry& e : entries) {
       const auto g = harmonics(e.theta);
       for (int j = 0; j < 4; ++j) mean[j] += g[j];
     }
-    for (double& v : mean) v /= double(std::max<std::size_t>(entries_.size(), 1));
+    for (double& v : mean) v /= double(std::max<std::size_t>(entries.size(), 1));
     std::vector<TrialSeas::WaveVector> wave_vectors;
-    for (const Entry& e : entries_) {
+    for (const Entry& e : entries) {
       auto g = harmonics(e.theta);
       for (int j = 0; j < 4; ++j) g[j] -= mean[j];
       centred_.push_back(g);
@@ -381,7 +382,6 @@ class DirectionPower {
   static std::array<double, 4> harmonics(double theta) {
     return {std::cos(theta), std::sin(theta), std::cos(2 * theta), std::sin(2 * theta)};
   }
-  std::vector<Entry> entries_;
   std::size_t stride_ = 1;
   std::vector<std::array<double, 4>> centred_;
   std::optional<TrialSeas> seas_;
